@@ -1,0 +1,33 @@
+# kinlib: two commands on a fresh machine.
+#   make lab   creates .venv if missing, installs kinlib with its notebook dependencies,
+#              starts JupyterLab on notebooks/ (it prints the URL to open)
+#   make test  same environment, runs the whole test suite (lint + pytest)
+PYTHON ?= python3
+VENV   ?= .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.kinlib-installed
+
+.PHONY: lab test venv bench lint clean
+
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[lab,dev]'
+	touch $(STAMP)
+
+venv: $(STAMP)
+
+lab: $(STAMP)
+	$(BIN)/jupyter lab --notebook-dir=notebooks
+
+lint: $(STAMP)
+	$(BIN)/ruff check .
+
+test: lint
+	$(BIN)/python -m pytest
+
+bench: $(STAMP)
+	$(BIN)/python bench/bench_conversions.py
+
+clean:
+	rm -rf $(VENV) build *.egg-info

@@ -1,0 +1,107 @@
+"""kinlib: the course workbook library for robot kinematics.
+
+The numeric core needs only numpy; sympy, matplotlib and meshcat load on first use.
+Conventions (frames, quaternion order, Euler sequences, ...) are stated once in
+:mod:`kinlib.conventions`.
+"""
+
+from .axis_angle import (
+    axis_angle_from_matrix,
+    exp_so3,
+    log_so3,
+    matrix_from_axis_angle,
+    rodrigues_rotate,
+)
+from .cayley import cayley_from_matrix, matrix_from_cayley
+from .dual_quaternions import (
+    dual_quat_conjugate,
+    dual_quat_from_screw,
+    dual_quat_from_transform,
+    dual_quat_multiply,
+    dual_quat_transform_point,
+    screw_from_dual_quat,
+    transform_from_dual_quat,
+)
+from .errors import KinlibError, URDFError
+from .euler import EULER_SEQUENCES, euler_from_matrix, euler_gimbal_lock, matrix_from_euler
+from .quaternions import (
+    axis_angle_from_quat,
+    matrix_from_quat,
+    quat_conjugate,
+    quat_from_axis_angle,
+    quat_from_matrix,
+    quat_inverse,
+    quat_multiply,
+    quat_normalize,
+    quat_rotate,
+    quat_slerp,
+    quat_wxyz_from_xyzw,
+    quat_xyzw_from_wxyz,
+)
+from .rotations import (
+    check_rotation,
+    is_rotation,
+    nearest_rotation,
+    rotx,
+    roty,
+    rotz,
+    skew,
+    vee,
+)
+from .transforms import (
+    check_transform,
+    transform,
+    transform_inverse,
+    transform_points,
+    transform_vectors,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "EULER_SEQUENCES",
+    "KinlibError",
+    "URDFError",
+    "axis_angle_from_matrix",
+    "axis_angle_from_quat",
+    "cayley_from_matrix",
+    "check_rotation",
+    "check_transform",
+    "dual_quat_conjugate",
+    "dual_quat_from_screw",
+    "dual_quat_from_transform",
+    "dual_quat_multiply",
+    "dual_quat_transform_point",
+    "euler_from_matrix",
+    "euler_gimbal_lock",
+    "exp_so3",
+    "is_rotation",
+    "log_so3",
+    "matrix_from_axis_angle",
+    "matrix_from_cayley",
+    "matrix_from_euler",
+    "matrix_from_quat",
+    "nearest_rotation",
+    "quat_conjugate",
+    "quat_from_axis_angle",
+    "quat_from_matrix",
+    "quat_inverse",
+    "quat_multiply",
+    "quat_normalize",
+    "quat_rotate",
+    "quat_slerp",
+    "quat_wxyz_from_xyzw",
+    "quat_xyzw_from_wxyz",
+    "rodrigues_rotate",
+    "rotx",
+    "roty",
+    "rotz",
+    "screw_from_dual_quat",
+    "skew",
+    "transform",
+    "transform_from_dual_quat",
+    "transform_inverse",
+    "transform_points",
+    "transform_vectors",
+    "vee",
+]

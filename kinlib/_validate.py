@@ -1,0 +1,149 @@
+"""Input checks shared by kinlib's functions (private).
+
+Every public function turns its inputs into clean float64 arrays here, so that bad input
+is reported as a :class:`KinlibError` that says what was expected, what was given and
+where, instead of failing deep inside numpy.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import KinlibError
+
+__all__ = [
+    "as_array",
+    "as_angle",
+    "as_unit_vectors",
+    "broadcast",
+    "fmt_index",
+    "is_symbolic",
+    "parse_seq",
+]
+
+
+def _shape_text(tail: tuple[int, ...]) -> str:
+    if not tail:
+        return "scalars (any shape)"
+    return "shape (..., " + ", ".join(str(n) for n in tail) + ")"
+
+
+def fmt_index(batch_shape: tuple[int, ...], mask: np.ndarray) -> str:
+    """Describe where ``mask`` is true in a batch: ``""`` for a single item, else ``"[i, j]"``.
+
+    Adds how many others are affected, e.g. ``"[3] (and 4 more of 100)"``.
+    """
+    if not batch_shape:
+        return ""
+    bad = np.argwhere(mask)
+    first = "[" + ", ".join(str(int(i)) for i in bad[0]) + "]"
+    more = len(bad) - 1
+    total = int(np.prod(batch_shape))
+    return first + (f" (and {more} more of {total})" if more else "")
+
+
+def as_array(x, name: str, tail: tuple[int, ...] = (), *, finite: bool = True) -> np.ndarray:
+    """``x`` as a float64 array whose shape ends in ``tail``, checked for NaN/inf."""
+    if isinstance(x, str | bytes) or x is None:
+        raise KinlibError(f"{name}: expected numbers of {_shape_text(tail)}, got {x!r}")
+    try:
+        a = np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise KinlibError(
+            f"{name}: expected real numbers of {_shape_text(tail)}, got "
+            f"{type(x).__name__} that numpy cannot read as float ({exc})"
+        ) from None
+    n = len(tail)
+    if a.ndim < n or a.shape[a.ndim - n :] != tail:
+        raise KinlibError(f"{name}: expected {_shape_text(tail)}, got shape {a.shape}")
+    if finite and a.size and not np.isfinite(a).all():
+        bad = ~np.isfinite(a)
+        if n:
+            bad = bad.reshape(a.shape[: a.ndim - n] + (-1,)).any(axis=-1)
+        where = fmt_index(a.shape[: a.ndim - n], bad)
+        raise KinlibError(f"{name}{where}: contains NaN or infinity: {_preview(x)}")
+    return a
+
+
+def _preview(x) -> str:
+    text = np.array2string(np.asarray(x, dtype=float), threshold=12, precision=4)
+    return text.replace("\n", " ")
+
+
+def as_angle(x, name: str = "angle") -> np.ndarray:
+    """An array of angles (any shape), finite."""
+    return as_array(x, name)
+
+
+def as_unit_vectors(x, name: str = "axis", *, eps: float = 1e-12) -> np.ndarray:
+    """``x`` as unit 3-vectors (normalised); a zero (or near-zero) vector is an error."""
+    a = as_array(x, name, (3,))
+    norm = np.sqrt(np.einsum("...i,...i->...", a, a))
+    small = norm <= eps
+    if np.any(small):
+        where = fmt_index(a.shape[:-1], small)
+        raise KinlibError(
+            f"{name}{where}: expected a non-zero 3-vector (it is normalised), got "
+            f"{_preview(a[small][0])} with norm {norm[small].flat[0]:.3g}"
+        )
+    return a / norm[..., None]
+
+
+def broadcast(*arrays_with_tails: tuple[np.ndarray, int, str]) -> tuple[int, ...]:
+    """The common batch shape of arrays whose last ``tail`` dimensions are not batch dims."""
+    shapes = [a.shape[: a.ndim - t] for a, t, _ in arrays_with_tails]
+    try:
+        return np.broadcast_shapes(*shapes)
+    except ValueError:
+        described = ", ".join(
+            f"{name} batch {s}" for (_, _, name), s in zip(arrays_with_tails, shapes, strict=True)
+        )
+        raise KinlibError(f"batch shapes do not broadcast: {described}") from None
+
+
+def _is_sym(x) -> bool:
+    if type(x).__module__.startswith("sympy"):
+        return True
+    if isinstance(x, list | tuple):
+        return any(_is_sym(e) for e in x)
+    if isinstance(x, np.ndarray) and x.dtype == object:
+        return any(_is_sym(e) for e in x.flat)
+    return False
+
+
+def is_symbolic(*xs) -> bool:
+    """True when any argument is (or contains) a sympy object: then sympy is used."""
+    return any(_is_sym(x) for x in xs)
+
+
+_AXES = "xyz"
+
+
+def parse_seq(seq) -> tuple[tuple[int, int, int], bool]:
+    """Parse an Euler/fixed-angle sequence: ``(axis indices, intrinsic?)``.
+
+    UPPERCASE = intrinsic (moving axes), lowercase = extrinsic (fixed axes).
+    """
+    if not isinstance(seq, str) or len(seq) != 3:
+        raise KinlibError(
+            f"seq: expected three axis letters such as 'ZYX' (intrinsic) or 'xyz' "
+            f"(extrinsic), got {seq!r}"
+        )
+    if seq.isupper():
+        intrinsic = True
+    elif seq.islower():
+        intrinsic = False
+    else:
+        raise KinlibError(
+            f"seq: {seq!r} mixes cases; use UPPERCASE for intrinsic (rotating axes) or "
+            f"lowercase for extrinsic (fixed axes), e.g. 'ZYX' or 'xyz'"
+        )
+    low = seq.lower()
+    if any(c not in _AXES for c in low):
+        raise KinlibError(f"seq: {seq!r} has letters other than x, y, z")
+    if low[0] == low[1] or low[1] == low[2]:
+        raise KinlibError(
+            f"seq: {seq!r} turns about the same axis twice in a row, which is one rotation, "
+            f"not two; consecutive axes must differ (e.g. 'ZYZ' or 'ZYX')"
+        )
+    return tuple(_AXES.index(c) for c in low), intrinsic

@@ -1,0 +1,72 @@
+r"""The conventions kinlib follows, stated once.
+
+Units
+    SI everywhere in the API: metres and radians. Degrees appear only in helpers
+    (use ``np.deg2rad``).
+
+Frames and transforms
+    Right-handed frames, active rotations, column vectors. ``T_AB`` is the pose of frame
+    B in frame A, so ``T_AC = T_AB @ T_BC`` and ``p_A = T_AB @ p_B``. A rotation matrix's
+    columns are the unit axes of B written in A (direction cosines).
+
+Quaternions
+    Hamilton algebra (i² = j² = k² = ijk = −1), scalar first: ``[w, x, y, z]``, with
+    ``q = (cos θ/2, u sin θ/2)`` for a rotation of θ about the unit axis u.
+    ``quat_from_matrix`` returns the quaternion with ``w >= 0`` (q and −q are the same
+    rotation). ``quat_xyzw_from_wxyz`` / ``quat_wxyz_from_xyzw`` convert to and from the
+    scalar-last order of ROS, scipy and Eigen's coefficient storage.
+
+Euler and fixed angles
+    A sequence is three letters. UPPERCASE = intrinsic (rotations about the axes of the
+    moving frame: "Euler angles"); lowercase = extrinsic (rotations about the fixed axes:
+    "fixed angles"); mixing cases is an error, as is the same axis twice in a row. The
+    angles are given in the order of the letters, so::
+
+        matrix_from_euler([a, b, g], "ZYX") == rotz(a) @ roty(b) @ rotx(g)
+                                            == matrix_from_euler([g, b, a], "xyz")
+
+    (roll-pitch-yaw; URDF's ``rpy`` is ``"xyz"``). All 24 sequences are supported: 12
+    Tait–Bryan (three different axes) and 12 proper Euler (first axis = last).
+
+    ``euler_from_matrix`` returns the middle angle in [−π/2, π/2] for Tait–Bryan sequences
+    and in [0, π] for proper Euler sequences, the outer two in (−π, π]. At gimbal lock the
+    middle angle is at its singular value (±π/2, or 0/π) and only the sum or difference of
+    the outer angles is defined: kinlib then sets the *first* angle (first in the letter
+    order, for extrinsic sequences too) to 0 and lets the third carry the whole rotation
+    (Craig's convention). ``euler_gimbal_lock(R, seq, tol)`` tells whether the middle angle
+    is within ``tol`` radians of its singular value.
+
+Axis-angle and Cayley
+    ``axis_angle_from_matrix`` returns the angle in [0, π]. ``exp_so3(w)`` takes the rotation
+    vector ``w = θ u``; ``log_so3(R)`` returns it. Cayley's formula is
+    ``R = (I − S)⁻¹ (I + S)`` with ``S = skew(s)``, so ``s = tan(θ/2) u``; it is undefined
+    at θ = π.
+
+Dual quaternions (Daniilidis 1999)
+    ``dq = q_r + ε q_d`` stored as 8 numbers: real part wxyz, then dual part wxyz, with
+    ``q_d = ½ t q_r``. A screw is ``(l, m, θ, d)``: unit axis direction l, moment
+    ``m = c × l`` for any point c on the axis, rotation angle θ about it and translation d
+    along it.
+
+Robots
+    URDF: a joint's axis is expressed in the joint frame, which is the child link's frame:
+    ``T_world_child = T_world_parent @ T_origin(xyz, rpy) @ motion(axis, q)`` (the matrix
+    stack). Denavit–Hartenberg: standard ``A_i = Rz(θ) Tz(d) Tx(a) Rx(α)``; modified (Craig)
+    only when asked. The geometric Jacobian is 6×n with rows ``[v; ω]`` in the base frame.
+
+Batches and symbols
+    Every numeric function accepts leading batch dimensions — ``(..., 3, 3)``, ``(..., 4)``,
+    ``(N, n_joints)`` — and returns the matching batch. The elementary constructors
+    (``rotx``, ``roty``, ``rotz``, ``skew``, ``matrix_from_axis_angle``,
+    ``matrix_from_euler``, ``transform``) given sympy expressions return ``sympy.Matrix``.
+
+Bad input
+    Raises :class:`kinlib.KinlibError` (a ``ValueError``) saying what was expected, what
+    was given and where. Results that may be unreachable (IK, planning) come back as
+    result objects with ``success=False`` instead.
+"""
+
+__all__ = ["ROTATION_TOL"]
+
+#: Default tolerance for accepting a matrix as a rotation: max |RᵀR − I| and |det R − 1|.
+ROTATION_TOL = 1e-6
