@@ -157,10 +157,10 @@ def screw_from_dual_quat(dq):
     translation t. A pure translation (θ = 0) has l = t/|t|, d = |t| and m = 0 (the axis
     through the origin; any parallel line would do); the identity returns l = [0, 0, 1].
 
-    >>> from kinlib import rotz, transform
     A quarter turn about the vertical line through c = (1, 0, 0) takes the origin to
     R(0 − c) + c = (1, −1, 0); add a lift of 0.5 along the line:
 
+    >>> from kinlib import rotz, transform
     >>> T = transform(rotz(np.pi / 2), [1.0, -1.0, 0.5])
     >>> l, m, theta, d = screw_from_dual_quat(dual_quat_from_transform(T))
     >>> l.round(12) + 0.0, m.round(12) + 0.0, round(float(theta), 12), round(float(d), 12)
