@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._accel import MIN_BATCH, kernels
 from ._validate import as_array, as_unit_vectors, broadcast, fmt_index
 from .errors import KinlibError
 from .rotations import check_rotation
@@ -182,14 +183,27 @@ def matrix_from_quat(q):
            [ 0.,  0.,  1.]])
     """
     a = _quat(q)
+    k = kernels() if a.size >= 4 * MIN_BATCH else None
+    if k is None:
+        return _matrix_from_quat_numpy(a)
+    flat = np.ascontiguousarray(a.reshape(-1, 4))
+    out = np.empty((len(flat), 3, 3))
+    if k.matrix_from_quat(flat, out) >= 0:
+        _nonzero(a, "q")
+    return out.reshape(a.shape[:-1] + (3, 3))
+
+
+def _matrix_from_quat_numpy(a):
+    """The numpy reference of :func:`matrix_from_quat` for a checked (..., 4) array."""
     n2 = np.einsum("...i,...i->...", a, a)
     if np.any(n2 <= _ZERO * _ZERO):
         _nonzero(a, "q")
     s = 2.0 / n2
     w, x, y, z = np.moveaxis(a, -1, 0)
-    xx, yy, zz = s * x * x, s * y * y, s * z * z
-    xy, xz, yz = s * x * y, s * x * z, s * y * z
-    wx, wy, wz = s * w * x, s * w * y, s * w * z
+    xs, ys, zs = x * s, y * s, z * s
+    xx, yy, zz = x * xs, y * ys, z * zs
+    xy, xz, yz = x * ys, x * zs, y * zs
+    wx, wy, wz = w * xs, w * ys, w * zs
     R = np.empty(a.shape[:-1] + (3, 3))
     R[..., 0, 0] = 1.0 - (yy + zz)
     R[..., 0, 1] = xy - wz

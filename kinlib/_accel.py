@@ -1,0 +1,63 @@
+"""Optional compiled kernels (private).
+
+kinlib's reference implementations are numpy, and every function works without this
+module. A few batched conversions are limited by numpy's per-operation cost rather than
+by arithmetic — quaternion → matrix must write nine interleaved outputs, which numpy can
+only do with strided passes or a transpose — and there a numba kernel is used when
+numba is installed (``pip install 'kinlib[fast]'``, which ``make`` does) and the
+environment variable ``KINLIB_NUMBA`` is not ``0``. Kernels are only used for batches of
+at least :data:`MIN_BATCH`, so small calls never pay numba's import or compile time. The
+tests compare both paths.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+from types import SimpleNamespace
+
+__all__ = ["MIN_BATCH", "kernels"]
+
+#: Smallest batch for which a compiled kernel is used.
+MIN_BATCH = 2048
+
+
+def _build(njit):
+    @njit(cache=True, nogil=True)
+    def matrix_from_quat(q, out):  # pragma: no cover - compiled
+        """Rotation matrices of (n, 4) quaternions into out (n, 3, 3); returns the index of
+        the first zero quaternion, or −1."""
+        for n in range(q.shape[0]):
+            w, x, y, z = q[n, 0], q[n, 1], q[n, 2], q[n, 3]
+            n2 = w * w + x * x + y * y + z * z
+            if n2 <= 1e-24:
+                return n
+            s = 2.0 / n2
+            xs, ys, zs = x * s, y * s, z * s
+            xx, yy, zz = x * xs, y * ys, z * zs
+            xy, xz, yz = x * ys, x * zs, y * zs
+            wx, wy, wz = w * xs, w * ys, w * zs
+            out[n, 0, 0] = 1.0 - (yy + zz)
+            out[n, 0, 1] = xy - wz
+            out[n, 0, 2] = xz + wy
+            out[n, 1, 0] = xy + wz
+            out[n, 1, 1] = 1.0 - (xx + zz)
+            out[n, 1, 2] = yz - wx
+            out[n, 2, 0] = xz - wy
+            out[n, 2, 1] = yz + wx
+            out[n, 2, 2] = 1.0 - (xx + yy)
+        return -1
+
+    return SimpleNamespace(matrix_from_quat=matrix_from_quat)
+
+
+@functools.cache
+def kernels():
+    """The compiled kernels, or ``None`` when numba is missing or disabled."""
+    if os.environ.get("KINLIB_NUMBA", "1") == "0":
+        return None
+    try:
+        import numba
+    except ImportError:
+        return None
+    return _build(numba.njit)
