@@ -16,6 +16,8 @@ import functools
 import os
 from types import SimpleNamespace
 
+import numpy as np
+
 __all__ = ["MIN_BATCH", "kernels"]
 
 #: Smallest batch for which a compiled kernel is used.
@@ -48,7 +50,56 @@ def _build(njit):
             out[n, 2, 2] = 1.0 - (xx + yy)
         return -1
 
-    return SimpleNamespace(matrix_from_quat=matrix_from_quat)
+    @njit(cache=True, nogil=True)
+    def rotation_errors(R, err, det):  # pragma: no cover - compiled
+        """max |RᵀR − I| and det R of (n, 3, 3) matrices into err (n,) and det (n,)."""
+        for n in range(R.shape[0]):
+            e = 0.0
+            for i in range(3):
+                for j in range(i, 3):
+                    g = R[n, 0, i] * R[n, 0, j] + R[n, 1, i] * R[n, 1, j] + R[n, 2, i] * R[n, 2, j]
+                    if i == j:
+                        g -= 1.0
+                    e = max(e, abs(g))
+            err[n] = e
+            det[n] = (
+                R[n, 0, 0] * (R[n, 1, 1] * R[n, 2, 2] - R[n, 1, 2] * R[n, 2, 1])
+                - R[n, 0, 1] * (R[n, 1, 0] * R[n, 2, 2] - R[n, 1, 2] * R[n, 2, 0])
+                + R[n, 0, 2] * (R[n, 1, 0] * R[n, 2, 1] - R[n, 1, 1] * R[n, 2, 0])
+            )
+
+    @njit(cache=True, nogil=True)
+    def quat_from_matrix(R, out):  # pragma: no cover - compiled
+        """Shepperd's method on (n, 3, 3) rotations into out (n, 4), w >= 0."""
+        for n in range(R.shape[0]):
+            m00, m01, m02 = R[n, 0, 0], R[n, 0, 1], R[n, 0, 2]
+            m10, m11, m12 = R[n, 1, 0], R[n, 1, 1], R[n, 1, 2]
+            m20, m21, m22 = R[n, 2, 0], R[n, 2, 1], R[n, 2, 2]
+            t0 = 1.0 + m00 + m11 + m22
+            t1 = 1.0 + m00 - m11 - m22
+            t2 = 1.0 - m00 + m11 - m22
+            t3 = 1.0 - m00 - m11 + m22
+            if t0 >= t1 and t0 >= t2 and t0 >= t3:
+                w, x, y, z = t0, m21 - m12, m02 - m20, m10 - m01
+            elif t1 >= t2 and t1 >= t3:
+                w, x, y, z = m21 - m12, t1, m10 + m01, m02 + m20
+            elif t2 >= t3:
+                w, x, y, z = m02 - m20, m10 + m01, t2, m21 + m12
+            else:
+                w, x, y, z = m10 - m01, m02 + m20, m21 + m12, t3
+            s = 1.0 / np.sqrt(w * w + x * x + y * y + z * z)
+            if w < 0.0:
+                s = -s
+            out[n, 0] = w * s
+            out[n, 1] = x * s
+            out[n, 2] = y * s
+            out[n, 3] = z * s
+
+    return SimpleNamespace(
+        matrix_from_quat=matrix_from_quat,
+        rotation_errors=rotation_errors,
+        quat_from_matrix=quat_from_matrix,
+    )
 
 
 @functools.cache

@@ -230,6 +230,17 @@ def quat_from_matrix(R):
     array([0., 0., 0., 1.])
     """
     m = check_rotation(R)
+    k = kernels() if m.size >= 9 * MIN_BATCH else None
+    if k is None:
+        return _quat_from_matrix_numpy(m)
+    flat = np.ascontiguousarray(m.reshape(-1, 3, 3))
+    out = np.empty((len(flat), 4))
+    k.quat_from_matrix(flat, out)
+    return out.reshape(m.shape[:-2] + (4,))
+
+
+def _quat_from_matrix_numpy(m):
+    """The numpy reference of :func:`quat_from_matrix` for a checked (..., 3, 3) array."""
     m00, m01, m02 = m[..., 0, 0], m[..., 0, 1], m[..., 0, 2]
     m10, m11, m12 = m[..., 1, 0], m[..., 1, 1], m[..., 1, 2]
     m20, m21, m22 = m[..., 2, 0], m[..., 2, 1], m[..., 2, 2]

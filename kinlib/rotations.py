@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._accel import MIN_BATCH, kernels
 from ._validate import as_array, fmt_index, is_symbolic
 from .conventions import ROTATION_TOL
 from .errors import KinlibError
@@ -138,6 +139,17 @@ def rotation_errors(R) -> tuple[np.ndarray, np.ndarray]:
     The orthonormality error is ``max |RᵀR − I|`` over the nine entries.
     """
     a = as_array(R, "R", (3, 3))
+    k = kernels() if a.size >= 9 * MIN_BATCH else None
+    if k is not None:
+        flat = np.ascontiguousarray(a.reshape(-1, 3, 3))
+        err, det = np.empty(len(flat)), np.empty(len(flat))
+        k.rotation_errors(flat, err, det)
+        return err.reshape(a.shape[:-2]), det.reshape(a.shape[:-2])
+    return _rotation_errors_numpy(a)
+
+
+def _rotation_errors_numpy(a):
+    """The numpy reference of :func:`rotation_errors` for a checked (..., 3, 3) array."""
     c0, c1, c2 = a[..., :, 0], a[..., :, 1], a[..., :, 2]
 
     def dot(u, v):

@@ -69,3 +69,41 @@ def test_kernels_can_be_disabled():
         "print(_accel.kernels() is None, 'numba' in sys.modules, float(R[..., 0, 0].max()))"
     )
     assert _run(code, KINLIB_NUMBA="0") == "True False -1.0"
+
+
+def _rotations(n, seed):
+    rng = np.random.default_rng(seed)
+    q = rng.normal(size=(n, 4))
+    R = kl.matrix_from_quat(q)
+    # Every branch of Shepperd's method: near-identity, and half turns about x, y, z.
+    R[:4] = [np.eye(3), kl.rotx(np.pi), kl.roty(np.pi), kl.rotz(np.pi)]
+    R[4:8] = kl.matrix_from_axis_angle(np.eye(3)[[0, 1, 2, 0]], np.pi - 1e-9)
+    return R
+
+
+@needs_numba
+def test_quat_from_matrix_kernel_matches_numpy():
+    from kinlib.quaternions import _quat_from_matrix_numpy
+
+    R = _rotations(3 * _accel.MIN_BATCH, 3).reshape(3, -1, 3, 3)
+    fast = kl.quat_from_matrix(R)
+    ref = _quat_from_matrix_numpy(R)
+    assert fast.shape == (3, _accel.MIN_BATCH, 4)
+    assert np.abs(fast - ref).max() < 1e-15 * 4
+    assert np.all(fast[..., 0] >= 0)
+
+
+@needs_numba
+def test_rotation_errors_kernel_matches_numpy():
+    from kinlib.rotations import _rotation_errors_numpy, rotation_errors
+
+    rng = np.random.default_rng(5)
+    M = _rotations(_accel.MIN_BATCH + 11, 4) + rng.normal(scale=1e-3, size=(1, 3, 3))
+    M[7] = np.diag([1.0, 1.0, -1.0])
+    err, det = rotation_errors(M)
+    err0, det0 = _rotation_errors_numpy(M)
+    assert np.abs(err - err0).max() < 1e-15 * 4
+    assert np.abs(det - det0).max() < 1e-15 * 8
+    assert det[7] == pytest.approx(-1.0)
+    with pytest.raises(kl.KinlibError, match=r"R\[0\].*not orthonormal"):
+        kl.check_rotation(M)
