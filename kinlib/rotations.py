@@ -185,9 +185,9 @@ def is_rotation(R, tol: float = ROTATION_TOL):
     False
     """
     a = as_array(R, "R", (3, 3), finite=False)
-    with np.errstate(invalid="ignore"):
-        err, det = rotation_errors(np.where(np.isfinite(a), a, np.nan))
-        ok = (err <= tol) & (np.abs(det - 1.0) <= tol)
+    finite = np.isfinite(a).all(axis=(-2, -1))
+    err, det = rotation_errors(np.where(finite[..., None, None], a, 0.0))
+    ok = finite & (err <= tol) & (np.abs(det - 1.0) <= tol)
     return ok if ok.ndim else bool(ok)
 
 
