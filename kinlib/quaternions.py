@@ -160,7 +160,8 @@ def axis_angle_from_quat(q):
     a = quat_normalize(q)
     a = np.where(a[..., :1] < 0, -a, a)  # same rotation, angle in [0, π]
     v = a[..., 1:]
-    s = _norm(v)
+    # hypot, not sqrt(v·v): the squares underflow for angles below ~1e-154
+    s = np.hypot(np.hypot(v[..., 0], v[..., 1]), v[..., 2])
     angle = 2.0 * np.arctan2(s, a[..., 0])
     tiny = s <= 1e-300
     axis = np.where(tiny[..., None], [1.0, 0.0, 0.0], v / np.where(tiny, 1.0, s)[..., None])
