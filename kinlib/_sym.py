@@ -8,7 +8,10 @@ from __future__ import annotations
 
 import sympy as sp
 
-__all__ = ["axis_rotation", "skew", "axis_angle", "transform", "matrix"]
+from .errors import KinlibError
+
+__all__ = ["axis_rotation", "skew", "axis_angle", "transform", "matrix", "scalar", "vector",
+           "matrix_3x3"]
 
 
 def matrix(x) -> sp.Matrix:
@@ -18,9 +21,39 @@ def matrix(x) -> sp.Matrix:
     return sp.Matrix(x)
 
 
+def scalar(e, name: str):
+    """``e`` as one sympy expression; text, matrices and lists are errors."""
+    if not isinstance(e, str | bytes):
+        try:
+            out = sp.sympify(e)
+        except (sp.SympifyError, TypeError, ValueError):
+            out = None
+        if isinstance(out, sp.Expr) and not out.is_Matrix:  # MatrixExpr is an Expr
+            return out
+    text = repr(e).replace("\n", " ")
+    raise KinlibError(
+        f"{name}: expected a number or a sympy expression, got {type(e).__name__} "
+        f"{text if len(text) <= 60 else text[:57] + '...'}"
+    )
+
+
+def vector(v, name: str, n: int = 3) -> list:
+    """``v`` as a list of ``n`` sympy expressions."""
+    try:
+        items = [] if isinstance(v, str | bytes) else list(v)
+    except TypeError:
+        items = []
+    if len(items) != n:
+        raise KinlibError(
+            f"{name}: expected {n} numbers or sympy expressions, got {type(v).__name__} "
+            f"{v!r}"
+        )
+    return [scalar(e, name) for e in items]
+
+
 def axis_rotation(axis: int, theta) -> sp.Matrix:
     """Rotation about coordinate axis 0, 1, 2 (x, y, z) by ``theta``."""
-    theta = sp.sympify(theta)
+    theta = scalar(theta, "theta")
     c, s = sp.cos(theta), sp.sin(theta)
     if axis == 0:
         return sp.Matrix([[1, 0, 0], [0, c, -s], [0, s, c]])
@@ -30,7 +63,7 @@ def axis_rotation(axis: int, theta) -> sp.Matrix:
 
 
 def skew(v) -> sp.Matrix:
-    x, y, z = (sp.sympify(e) for e in v)
+    x, y, z = vector(v, "v")
     return sp.Matrix([[0, -z, y], [z, 0, -x], [-y, x, 0]])
 
 
@@ -39,22 +72,34 @@ def axis_angle(axis, angle) -> sp.Matrix:
 
     A numeric axis is normalised exactly; a symbolic one is taken as given (assumed unit).
     """
-    u = sp.Matrix([sp.sympify(e) for e in axis])
+    u = sp.Matrix(vector(axis, "axis"))
     if all(e.is_number for e in u):
         norm = sp.sqrt(sum(e**2 for e in u))
         if norm == 0:
-            from .errors import KinlibError
-
             raise KinlibError("axis: expected a non-zero 3-vector, got [0, 0, 0]")
         u = u / norm
-    theta = sp.sympify(angle)
+    theta = scalar(angle, "angle")
     c, s = sp.cos(theta), sp.sin(theta)
     return c * sp.eye(3) + s * skew(u) + (1 - c) * (u * u.T)
 
 
+def matrix_3x3(R, name: str) -> sp.Matrix:
+    """``R`` as a 3×3 sympy Matrix of expressions."""
+    try:
+        M = None if isinstance(R, str | bytes) else sp.Matrix(R)
+    except (sp.SympifyError, TypeError, ValueError):  # ValueError includes ShapeError
+        M = None
+    if M is None or M.shape != (3, 3):
+        got = "" if M is None else f" of shape {M.shape}"
+        raise KinlibError(f"{name}: expected a 3×3 matrix, got {type(R).__name__}{got}")
+    for e in M:
+        scalar(e, name)
+    return M
+
+
 def transform(R=None, p=None) -> sp.Matrix:
-    Rm = sp.eye(3) if R is None else sp.Matrix(R)
-    pm = sp.zeros(3, 1) if p is None else sp.Matrix([sp.sympify(e) for e in p])
+    Rm = sp.eye(3) if R is None else matrix_3x3(R, "R")
+    pm = sp.zeros(3, 1) if p is None else sp.Matrix(vector(p, "p"))
     T = sp.eye(4)
     T[:3, :3] = Rm
     T[:3, 3] = pm

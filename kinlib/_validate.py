@@ -14,7 +14,9 @@ from .errors import KinlibError
 __all__ = [
     "as_array",
     "as_angle",
+    "as_tol",
     "as_unit_vectors",
+    "unit_rows",
     "broadcast",
     "fmt_index",
     "is_symbolic",
@@ -47,8 +49,24 @@ def as_array(x, name: str, tail: tuple[int, ...] = (), *, finite: bool = True) -
     if isinstance(x, str | bytes) or x is None:
         raise KinlibError(f"{name}: expected numbers of {_shape_text(tail)}, got {x!r}")
     try:
-        a = np.asarray(x, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
+        raw = np.asarray(x)
+    except (TypeError, ValueError, OverflowError) as exc:  # ragged nesting, ...
+        raise KinlibError(
+            f"{name}: expected real numbers of {_shape_text(tail)}, got "
+            f"{type(x).__name__} that numpy cannot read as float ({exc})"
+        ) from None
+    # numpy would parse text ("1.5") and drop imaginary parts with only a warning
+    kind = raw.dtype.kind
+    if kind in "USVMmc" or (
+        kind == "O" and any(isinstance(e, str | bytes | complex) for e in raw.flat)
+    ):
+        what = "complex numbers" if kind == "c" else f"data of dtype {raw.dtype}"
+        raise KinlibError(
+            f"{name}: expected real numbers of {_shape_text(tail)}, got {what}: {_short(x)}"
+        )
+    try:
+        a = np.asarray(raw, dtype=np.float64)
+    except (TypeError, ValueError, OverflowError) as exc:
         raise KinlibError(
             f"{name}: expected real numbers of {_shape_text(tail)}, got "
             f"{type(x).__name__} that numpy cannot read as float ({exc})"
@@ -65,6 +83,11 @@ def as_array(x, name: str, tail: tuple[int, ...] = (), *, finite: bool = True) -
     return a
 
 
+def _short(x) -> str:
+    text = repr(x).replace("\n", " ")
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
 def _preview(x) -> str:
     text = np.array2string(np.asarray(x, dtype=float), threshold=12, precision=4)
     return text.replace("\n", " ")
@@ -75,10 +98,32 @@ def as_angle(x, name: str = "angle") -> np.ndarray:
     return as_array(x, name)
 
 
+def as_tol(tol, name: str = "tol") -> float:
+    """A tolerance: one finite number >= 0."""
+    a = as_array(tol, name)
+    if a.ndim or a < 0:
+        raise KinlibError(f"{name}: expected one number >= 0, got {_short(tol)}")
+    return float(a)
+
+
+def unit_rows(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(a / |a|, |a|)`` along the last axis, without overflow or underflow.
+
+    Each row is first scaled by its largest entry, so the squares of huge (1e200) or tiny
+    entries stay representable. Zero rows give NaN directions; callers reject them first.
+    """
+    big = np.abs(a).max(axis=-1, initial=0.0)
+    scale = np.where(big > 0, big, 1.0)[..., None]
+    u = a / scale
+    n = np.sqrt(np.einsum("...i,...i->...", u, u))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return u / n[..., None], n * scale[..., 0]
+
+
 def as_unit_vectors(x, name: str = "axis", *, eps: float = 1e-12) -> np.ndarray:
     """``x`` as unit 3-vectors (normalised); a zero (or near-zero) vector is an error."""
     a = as_array(x, name, (3,))
-    norm = np.sqrt(np.einsum("...i,...i->...", a, a))
+    u, norm = unit_rows(a)
     small = norm <= eps
     if np.any(small):
         where = fmt_index(a.shape[:-1], small)
@@ -86,7 +131,7 @@ def as_unit_vectors(x, name: str = "axis", *, eps: float = 1e-12) -> np.ndarray:
             f"{name}{where}: expected a non-zero 3-vector (it is normalised), got "
             f"{_preview(a[small][0])} with norm {norm[small].flat[0]:.3g}"
         )
-    return a / norm[..., None]
+    return u
 
 
 def broadcast(*arrays_with_tails: tuple[np.ndarray, int, str]) -> tuple[int, ...]:
@@ -129,6 +174,9 @@ def parse_seq(seq) -> tuple[tuple[int, int, int], bool]:
             f"seq: expected three axis letters such as 'ZYX' (intrinsic) or 'xyz' "
             f"(extrinsic), got {seq!r}"
         )
+    low = seq.lower()
+    if any(c not in _AXES for c in low):  # before the case check: '123' mixes no cases
+        raise KinlibError(f"seq: {seq!r} has letters other than x, y, z")
     if seq.isupper():
         intrinsic = True
     elif seq.islower():
@@ -138,9 +186,6 @@ def parse_seq(seq) -> tuple[tuple[int, int, int], bool]:
             f"seq: {seq!r} mixes cases; use UPPERCASE for intrinsic (rotating axes) or "
             f"lowercase for extrinsic (fixed axes), e.g. 'ZYX' or 'xyz'"
         )
-    low = seq.lower()
-    if any(c not in _AXES for c in low):
-        raise KinlibError(f"seq: {seq!r} has letters other than x, y, z")
     if low[0] == low[1] or low[1] == low[2]:
         raise KinlibError(
             f"seq: {seq!r} turns about the same axis twice in a row, which is one rotation, "

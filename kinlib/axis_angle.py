@@ -15,9 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, as_unit_vectors, broadcast, is_symbolic
+from ._validate import as_array, as_unit_vectors, broadcast, is_symbolic, unit_rows
 from .quaternions import axis_angle_from_quat, quat_from_matrix
-from .rotations import skew
 
 __all__ = [
     "matrix_from_axis_angle",
@@ -28,9 +27,14 @@ __all__ = [
 ]
 
 
-def _rodrigues_matrix(u, c, s):
-    """``c I + s [u]x + (1 − c) u uᵀ`` for unit u (..., 3) and c, s (...)."""
-    v = 1.0 - c
+def _rodrigues_matrix(u, t):
+    """``cos t I + sin t [u]x + (1 − cos t) u uᵀ`` for unit u (..., 3) and angles t (...).
+
+    ``1 − cos t`` is evaluated as ``2 sin²(t/2)``, which keeps its relative accuracy for
+    small angles.
+    """
+    c, s = np.cos(t), np.sin(t)
+    v = 2.0 * np.sin(0.5 * t) ** 2
     x, y, z = u[..., 0], u[..., 1], u[..., 2]
     R = np.empty(np.broadcast_shapes(u.shape[:-1], c.shape) + (3, 3))
     R[..., 0, 0] = c + v * x * x
@@ -65,7 +69,7 @@ def matrix_from_axis_angle(axis, angle):
     u = as_unit_vectors(axis, "axis")
     t = as_array(angle, "angle")
     broadcast((u, 1, "axis"), (t, 0, "angle"))
-    return _rodrigues_matrix(u, np.cos(t), np.sin(t))
+    return _rodrigues_matrix(u, t)
 
 
 def axis_angle_from_matrix(R):
@@ -105,12 +109,12 @@ def rodrigues_rotate(v, axis, angle):
 def exp_so3(w):
     r"""Rotation matrix :math:`e^{[w]_\times}` of the rotation vector ``w = θu``.
 
-    Rodrigues with :math:`\frac{\sin\theta}{\theta}` and
-    :math:`\frac{1-\cos\theta}{\theta^2} = \frac12\left(\frac{\sin(\theta/2)}{\theta/2}\right)^2`
-    evaluated without cancellation, so tiny and zero vectors are exact:
-
     .. math:: e^{[w]_\times} = I + \frac{\sin\theta}{\theta}[w]_\times
-              + \frac{1-\cos\theta}{\theta^2}[w]_\times^2
+              + \frac{1-\cos\theta}{\theta^2}[w]_\times^2 , \qquad \theta = |w|
+
+    evaluated as Rodrigues' formula with the unit axis :math:`u = w/\theta` (found without
+    overflow) and :math:`1 - \cos\theta = 2\sin^2\frac\theta2` (no cancellation), so tiny,
+    zero and huge vectors are all accurate.
 
     >>> exp_so3([0.0, 0.0, np.pi / 2]).round(12) + 0.0
     array([[ 0., -1.,  0.],
@@ -118,11 +122,9 @@ def exp_so3(w):
            [ 0.,  0.,  1.]])
     """
     a = as_array(w, "w", (3,))
-    theta = np.sqrt(np.einsum("...i,...i->...", a, a))
-    A = np.sinc(theta / np.pi)[..., None, None]
-    B = (0.5 * np.sinc(theta / (2.0 * np.pi)) ** 2)[..., None, None]
-    S = skew(a)
-    return np.eye(3) + A * S + B * (S @ S)
+    u, theta = unit_rows(a)  # scaled: no overflow for huge |w|
+    u = np.where((theta > 0)[..., None], u, [0.0, 0.0, 1.0])  # any axis for w = 0
+    return _rodrigues_matrix(u, theta)
 
 
 def log_so3(R):

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, is_symbolic, parse_seq
+from ._validate import as_array, as_tol, is_symbolic, parse_seq
 from .rotations import check_rotation
 
 __all__ = ["matrix_from_euler", "euler_from_matrix", "euler_gimbal_lock", "EULER_SEQUENCES"]
@@ -185,6 +185,7 @@ def euler_from_matrix(R, seq: str, *, tol: float = _LOCK_TOL):
     array([0.        , 1.57079633, 0.7       ])
     """
     axes, intrinsic = parse_seq(seq)
+    tol = as_tol(tol)
     Rm = check_rotation(R)
     if intrinsic:
         return _solve(Rm, axes, True, tol)
@@ -205,6 +206,7 @@ def euler_gimbal_lock(R, seq: str, tol: float = 1e-6):
     False
     """
     axes, intrinsic = parse_seq(seq)
+    tol = as_tol(tol)
     a = check_rotation(R)
     if not intrinsic:
         axes = axes[::-1]

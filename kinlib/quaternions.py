@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._accel import MIN_BATCH, kernels
-from ._validate import as_array, as_unit_vectors, broadcast, fmt_index
+from ._validate import as_array, as_unit_vectors, broadcast, fmt_index, unit_rows
 from .errors import KinlibError
 from .rotations import check_rotation
 
@@ -44,8 +44,8 @@ def _norm(q):
     return np.sqrt(np.einsum("...i,...i->...", q, q))
 
 
-def _nonzero(q, name):
-    n = _norm(q)
+def _nonzero(q, name, n=None):
+    n = _norm(q) if n is None else n
     small = n <= _ZERO
     if np.any(small):
         where = fmt_index(q.shape[:-1], small)
@@ -108,8 +108,15 @@ def quat_normalize(q):
     >>> quat_normalize([0.0, 0.0, 0.0, 2.0])
     array([0., 0., 0., 1.])
     """
-    a = _quat(q)
-    return a / _nonzero(a, "q")[..., None]
+    return _unit(q, "q")
+
+
+def _unit(q, name):
+    """``q`` checked and normalised (robust to huge and tiny entries)."""
+    a = _quat(q, name)
+    u, n = unit_rows(a)
+    _nonzero(a, name, n)
+    return u
 
 
 def quat_rotate(q, v):
@@ -184,6 +191,8 @@ def matrix_from_quat(q):
            [ 0.,  0.,  1.]])
     """
     a = _quat(q)
+    if a.size and np.abs(a).max() > 1e150:  # |q|² would overflow: scale each row first
+        a = unit_rows(a)[0]
     k = kernels() if a.size >= 4 * MIN_BATCH else None
     if k is None:
         return _matrix_from_quat_numpy(a)
@@ -285,7 +294,7 @@ def quat_slerp(q0, q1, t):
     >>> quat_slerp(q0, q1, 0.5).round(6)
     array([0.92388 , 0.      , 0.      , 0.382683])
     """
-    a, b = quat_normalize(q0), quat_normalize(q1)
+    a, b = _unit(q0, "q0"), _unit(q1, "q1")
     tt = as_array(t, "t")
     if np.any((tt < 0.0) | (tt > 1.0)):
         bad = (tt < 0.0) | (tt > 1.0)

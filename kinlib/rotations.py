@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._accel import MIN_BATCH, kernels
-from ._validate import as_array, fmt_index, is_symbolic
+from ._validate import as_array, as_tol, fmt_index, is_symbolic
 from .conventions import ROTATION_TOL
 from .errors import KinlibError
 
@@ -121,6 +121,7 @@ def vee(S, tol: float = 1e-9):
     array([1., 2., 3.])
     """
     a = as_array(S, "S", (3, 3))
+    tol = as_tol(tol)
     asym = np.abs(a + np.swapaxes(a, -1, -2)).max(axis=(-2, -1))
     scale = 1.0 + np.abs(a).max(axis=(-2, -1))
     bad = asym > tol * scale
@@ -185,6 +186,7 @@ def is_rotation(R, tol: float = ROTATION_TOL):
     False
     """
     a = as_array(R, "R", (3, 3), finite=False)
+    tol = as_tol(tol)
     finite = np.isfinite(a).all(axis=(-2, -1))
     err, det = rotation_errors(np.where(finite[..., None, None], a, 0.0))
     ok = finite & (err <= tol) & (np.abs(det - 1.0) <= tol)
@@ -205,6 +207,7 @@ def check_rotation(R, tol: float = ROTATION_TOL, name: str = "R") -> np.ndarray:
     kinlib.errors.KinlibError: R is not a rotation matrix: its columns are not orthonormal, ...
     """
     a = as_array(R, name, (3, 3))
+    tol = as_tol(tol)
     err, det = rotation_errors(a)
     bad_orth = err > tol
     if np.any(bad_orth):

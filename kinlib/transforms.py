@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, broadcast, fmt_index, is_symbolic
+from ._validate import as_array, as_tol, broadcast, fmt_index, is_symbolic
 from .conventions import ROTATION_TOL
 from .errors import KinlibError
 from .rotations import check_rotation
@@ -59,6 +59,7 @@ def check_transform(T, name: str = "T", tol: float = ROTATION_TOL) -> np.ndarray
     Checks the bottom row ``[0, 0, 0, 1]`` and that the upper-left 3×3 block is a rotation.
     """
     a = as_array(T, name, (4, 4))
+    tol = as_tol(tol)
     row_err = np.abs(a[..., 3, :] - [0.0, 0.0, 0.0, 1.0]).max(axis=-1)
     bad = row_err > tol
     if np.any(bad):
@@ -87,6 +88,13 @@ def transform_inverse(T):
         import sympy as sp
 
         M = sp.Matrix(T)
+        if M.shape != (4, 4):
+            raise KinlibError(f"T: expected a 4×4 homogeneous transform, got shape {M.shape}")
+        if any((e - v).is_zero is False for e, v in zip(M[3, :], (0, 0, 0, 1), strict=True)):
+            raise KinlibError(
+                f"T: the bottom row of a homogeneous transform must be [0, 0, 0, 1], "
+                f"got {list(M[3, :])}"
+            )
         Rt = M[:3, :3].T
         out = sp.eye(4)
         out[:3, :3] = Rt
