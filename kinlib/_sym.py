@@ -10,15 +10,7 @@ import sympy as sp
 
 from .errors import KinlibError
 
-__all__ = ["axis_rotation", "skew", "axis_angle", "transform", "matrix", "scalar", "vector",
-           "matrix_3x3"]
-
-
-def matrix(x) -> sp.Matrix:
-    """``x`` as a sympy Matrix (column vector for a flat sequence)."""
-    if isinstance(x, sp.MatrixBase):
-        return sp.Matrix(x)
-    return sp.Matrix(x)
+__all__ = ["axis_angle", "axis_rotation", "matrix_3x3", "scalar", "skew", "transform", "vector"]
 
 
 def scalar(e, name: str):

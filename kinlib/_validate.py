@@ -13,7 +13,6 @@ from .errors import KinlibError
 
 __all__ = [
     "as_array",
-    "as_angle",
     "as_tol",
     "as_unit_vectors",
     "unit_rows",
@@ -91,11 +90,6 @@ def _short(x) -> str:
 def _preview(x) -> str:
     text = np.array2string(np.asarray(x, dtype=float), threshold=12, precision=4)
     return text.replace("\n", " ")
-
-
-def as_angle(x, name: str = "angle") -> np.ndarray:
-    """An array of angles (any shape), finite."""
-    return as_array(x, name)
 
 
 def as_tol(tol, name: str = "tol") -> float:
