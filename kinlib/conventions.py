@@ -33,8 +33,12 @@ Euler and fixed angles
     middle angle is at its singular value (±π/2, or 0/π) and only the sum or difference of
     the outer angles is defined: kinlib then sets the *first* angle (first in the letter
     order, for extrinsic sequences too) to 0 and lets the third carry the whole rotation
-    (Craig's convention). ``euler_gimbal_lock(R, seq, tol)`` tells whether the middle angle
-    is within ``tol`` radians of its singular value.
+    (Craig's convention). ``euler_from_matrix(R, seq, tol=1e-12)`` treats the matrix as
+    locked when the middle angle is within ``tol`` of its singular value; the default only
+    absorbs rounding, so a matrix *near* lock gets its exact (ill-conditioned) outer angles,
+    which still reproduce R to rounding. ``euler_gimbal_lock(R, seq, tol=1e-6)`` tells
+    whether the middle angle is within ``tol`` radians of its singular value; pass the
+    same ``tol`` to ``euler_from_matrix`` to apply the convention over that whole band.
 
 Axis-angle and Cayley
     ``axis_angle_from_matrix`` returns the angle in [0, π]. ``exp_so3(w)`` takes the rotation
