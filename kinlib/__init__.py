@@ -13,6 +13,7 @@ from .axis_angle import (
     rodrigues_rotate,
 )
 from .cayley import cayley_from_matrix, matrix_from_cayley
+from .dh import DHRow, dh_transform, mdh_transform
 from .dual_quaternions import (
     dual_quat_conjugate,
     dual_quat_from_screw,
@@ -24,6 +25,8 @@ from .dual_quaternions import (
 )
 from .errors import KinlibError, URDFError
 from .euler import EULER_SEQUENCES, euler_from_matrix, euler_gimbal_lock, matrix_from_euler
+from .model import Joint, Link, Mimic, Visual
+from .planar import planar_2r_fk
 from .quaternions import (
     axis_angle_from_quat,
     matrix_from_quat,
@@ -38,6 +41,7 @@ from .quaternions import (
     quat_wxyz_from_xyzw,
     quat_xyzw_from_wxyz,
 )
+from .robot import Robot
 from .rotations import (
     check_rotation,
     is_rotation,
@@ -55,16 +59,27 @@ from .transforms import (
     transform_points,
     transform_vectors,
 )
+from .urdf import load_urdf
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "DHRow",
     "EULER_SEQUENCES",
+    "Joint",
+    "Link",
+    "Mimic",
+    "Robot",
+    "Visual",
     "KinlibError",
     "URDFError",
     "axis_angle_from_matrix",
     "axis_angle_from_quat",
     "cayley_from_matrix",
+    "dh_transform",
+    "load_urdf",
+    "mdh_transform",
+    "planar_2r_fk",
     "check_rotation",
     "check_transform",
     "dual_quat_conjugate",

@@ -10,7 +10,9 @@ import sympy as sp
 
 from .errors import KinlibError
 
-__all__ = ["axis_angle", "axis_rotation", "matrix_3x3", "scalar", "skew", "transform", "vector"]
+__all__ = [
+    "axis_angle", "axis_rotation", "dh", "matrix_3x3", "scalar", "skew", "transform", "vector"
+]
 
 
 def scalar(e, name: str):
@@ -96,3 +98,23 @@ def transform(R=None, p=None) -> sp.Matrix:
     T[:3, :3] = Rm
     T[:3, 3] = pm
     return T
+
+
+def dh(theta, d, a, alpha, *, modified: bool) -> sp.Matrix:
+    """Standard ``Rz(θ) Tz(d) Tx(a) Rx(α)`` or modified ``Rx(α) Tx(a) Rz(θ) Tz(d)``."""
+    th, d, a, al = (scalar(x, n) for x, n in ((theta, "theta"), (d, "d"), (a, "a"),
+                                               (alpha, "alpha")))
+
+    def rot(axis, angle):
+        T = sp.eye(4)
+        T[:3, :3] = axis_rotation(axis, angle)
+        return T
+
+    def trans(axis, dist):
+        T = sp.eye(4)
+        T[axis, 3] = dist
+        return T
+
+    if modified:
+        return rot(0, al) * trans(0, a) * rot(2, th) * trans(2, d)
+    return rot(2, th) * trans(2, d) * trans(0, a) * rot(0, al)

@@ -1,0 +1,172 @@
+"""The parts a robot model is made of: links, joints, visual shapes, mimic rules.
+
+These are plain, immutable data. :class:`kinlib.Robot` checks that they form a tree;
+:func:`kinlib.load_urdf` builds them from a URDF file.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._validate import as_array, as_unit_vectors
+from .errors import KinlibError
+from .euler import matrix_from_euler
+from .transforms import check_transform
+
+__all__ = ["Joint", "Link", "Visual", "Mimic", "JOINT_TYPES", "origin_from_xyz_rpy",
+           "xyz_rpy_from_origin"]
+
+JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed")
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, dtype=float)
+    a.setflags(write=False)
+    return a
+
+
+def origin_from_xyz_rpy(xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)) -> np.ndarray:
+    """The 4×4 transform of a URDF ``<origin xyz rpy>``: ``R = Rz(yaw) Ry(pitch) Rx(roll)``.
+
+    >>> origin_from_xyz_rpy([5, 3, 0], [0, 0, np.pi / 2]).round(12) + 0.0
+    array([[ 0., -1.,  0.,  5.],
+           [ 1.,  0.,  0.,  3.],
+           [ 0.,  0.,  1.,  0.],
+           [ 0.,  0.,  0.,  1.]])
+    """
+    T = np.eye(4)
+    T[:3, :3] = matrix_from_euler(as_array(rpy, "rpy", (3,)), "xyz")
+    T[:3, 3] = as_array(xyz, "xyz", (3,))
+    return T
+
+
+def xyz_rpy_from_origin(T) -> tuple[np.ndarray, np.ndarray]:
+    """``(xyz, rpy)`` of a transform, the inverse of :func:`origin_from_xyz_rpy`."""
+    T = check_transform(T, "origin")
+    from .euler import euler_from_matrix
+
+    return T[:3, 3].copy(), euler_from_matrix(T[:3, :3], "xyz")
+
+
+@dataclass(frozen=True)
+class Mimic:
+    """A joint that follows another: ``q = multiplier * q[joint] + offset``."""
+
+    joint: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True)
+class Visual:
+    """A shape drawn with a link, in the link's frame moved by ``origin``.
+
+    ``kind`` is ``"box"`` (size = x, y, z lengths), ``"cylinder"`` (size = radius, length;
+    its axis is the local z axis, as in URDF), ``"sphere"`` (size = radius,) or ``"mesh"``
+    (``filename``, size = scale x, y, z). ``rgba`` is a colour with components in [0, 1].
+    """
+
+    kind: str
+    size: tuple[float, ...]
+    origin: np.ndarray = field(default_factory=lambda: np.eye(4))
+    rgba: tuple[float, float, float, float] | None = None
+    filename: str | None = None
+
+    def __post_init__(self):
+        n = {"box": 3, "cylinder": 2, "sphere": 1, "mesh": 3}.get(self.kind)
+        if n is None:
+            raise KinlibError(
+                f"Visual: kind must be box, cylinder, sphere or mesh, got {self.kind!r}"
+            )
+        size = as_array(self.size, f"{self.kind} size", (n,))
+        if (size < 0).any() if self.kind == "mesh" else (size <= 0).any():
+            raise KinlibError(f"{self.kind} size: expected positive numbers, got {size.tolist()}")
+        object.__setattr__(self, "size", tuple(float(s) for s in size))
+        object.__setattr__(self, "origin", _frozen(check_transform(self.origin, "visual origin")))
+        if self.kind == "mesh" and not self.filename:
+            raise KinlibError("Visual: a mesh needs a filename")
+        if self.rgba is not None:
+            c = as_array(self.rgba, "rgba", (4,))
+            if ((c < 0) | (c > 1)).any():
+                raise KinlibError(f"rgba: expected 4 numbers in [0, 1], got {c.tolist()}")
+            object.__setattr__(self, "rgba", tuple(float(x) for x in c))
+
+
+@dataclass(frozen=True)
+class Link:
+    """A rigid body of the robot: a name and the shapes drawn with it."""
+
+    name: str
+    visuals: tuple[Visual, ...] = ()
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name:
+            raise KinlibError(f"Link: name must be a non-empty string, got {self.name!r}")
+        object.__setattr__(self, "visuals", tuple(self.visuals))
+
+
+@dataclass(frozen=True, eq=False)
+class Joint:
+    """A joint between a ``parent`` and a ``child`` link.
+
+    Its frame is the child link's frame: ``T_parent_child = origin @ motion(q) @ post``
+    (``post`` is identity for URDF joints; standard-DH rows need it, see
+    :meth:`kinlib.Robot.from_dh`). ``axis`` is a unit vector in the joint frame
+    (normalised here). ``limits`` is ``(lower, upper)``; continuous and fixed joints have
+    none. ``mimic`` makes the joint follow another one.
+    """
+
+    name: str
+    type: str
+    parent: str
+    child: str
+    origin: np.ndarray = field(default_factory=lambda: np.eye(4))
+    axis: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0]))
+    limits: tuple[float, float] | None = None
+    mimic: Mimic | None = None
+    post: np.ndarray = field(default_factory=lambda: np.eye(4))
+
+    def __post_init__(self):
+        where = f"joint {self.name!r}"
+        if not isinstance(self.name, str) or not self.name:
+            raise KinlibError(f"Joint: name must be a non-empty string, got {self.name!r}")
+        if self.type not in JOINT_TYPES:
+            raise KinlibError(
+                f"{where}: unsupported joint type {self.type!r}; kinlib supports "
+                f"{', '.join(JOINT_TYPES)}"
+            )
+        for role in ("parent", "child"):
+            v = getattr(self, role)
+            if not isinstance(v, str) or not v:
+                raise KinlibError(f"{where}: {role} must be a link name, got {v!r}")
+        object.__setattr__(self, "origin", _frozen(check_transform(self.origin, f"{where} origin")))
+        object.__setattr__(self, "post", _frozen(check_transform(self.post, f"{where} post")))
+        object.__setattr__(self, "axis", _frozen(as_unit_vectors(self.axis, f"{where} axis")))
+        if self.type in ("continuous", "fixed"):
+            if self.limits is not None and self.type == "fixed":
+                raise KinlibError(f"{where}: a fixed joint has no limits")
+            object.__setattr__(self, "limits", None)
+        elif self.limits is not None:
+            lim = as_array(self.limits, f"{where} limits", finite=False)
+            if lim.shape != (2,) or np.isnan(lim).any() or lim[0] > lim[1]:
+                raise KinlibError(
+                    f"{where}: limits must be (lower, upper) with lower <= upper, got "
+                    f"{self.limits!r}"
+                )
+            object.__setattr__(self, "limits", (float(lim[0]), float(lim[1])))
+        if self.mimic is not None:
+            m = self.mimic
+            if not isinstance(m, Mimic):
+                raise KinlibError(f"{where}: mimic must be a Mimic, got {type(m).__name__}")
+            if self.type == "fixed":
+                raise KinlibError(f"{where}: a fixed joint cannot mimic another joint")
+            if not all(math.isfinite(v) for v in (m.multiplier, m.offset)):
+                raise KinlibError(f"{where}: mimic multiplier and offset must be finite")
+
+    @property
+    def movable(self) -> bool:
+        """True for revolute, continuous and prismatic joints."""
+        return self.type != "fixed"

@@ -1,0 +1,294 @@
+"""``Robot``: a kinematic tree of links and joints, and its forward kinematics.
+
+The pose of every link follows the matrix stack of seed 000: start at the root link,
+and for each joint going outwards multiply the parent's pose by the joint's fixed origin
+and by the motion of the joint variable,
+
+``T_world_child = T_world_parent @ T_origin(xyz, rpy) @ motion(axis, q)``,
+
+where ``motion`` is a rotation about the axis (revolute, continuous) or a translation
+along it (prismatic). Every configuration in a batch is computed at once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from . import _fk
+from ._validate import as_array, fmt_index
+from .errors import KinlibError
+from .model import Joint, Link
+
+__all__ = ["Robot"]
+
+
+def _tree(links, joints, err):
+    """Check that ``links`` and ``joints`` form one tree; return (root, joints in DFS order)."""
+    link_names = [lk.name for lk in links]
+    seen = set()
+    for lk in links:
+        if lk.name in seen:
+            raise err(f"duplicate link name {lk.name!r}", ("link", lk.name))
+        seen.add(lk.name)
+    jseen, parent_joint, children = set(), {}, {n: [] for n in link_names}
+    for jt in joints:
+        if jt.name in jseen:
+            raise err(f"duplicate joint name {jt.name!r}", ("joint", jt.name))
+        jseen.add(jt.name)
+        for role in ("parent", "child"):
+            if getattr(jt, role) not in seen:
+                raise err(f"joint {jt.name!r}: {role} link {getattr(jt, role)!r} does not exist",
+                          ("joint", jt.name))
+        if jt.parent == jt.child:
+            raise err(f"joint {jt.name!r}: link {jt.parent!r} is its own parent",
+                      ("joint", jt.name))
+        if jt.child in parent_joint:
+            raise err(f"link {jt.child!r} has two parent joints: "
+                      f"{parent_joint[jt.child].name!r} and {jt.name!r}", ("joint", jt.name))
+        parent_joint[jt.child] = jt
+        children[jt.parent].append(jt)
+    if not links:
+        raise err("the robot has no links", None)
+    roots = [n for n in link_names if n not in parent_joint]
+    if len(roots) > 1:
+        raise err(f"several root links (links with no parent joint): {roots}; a robot is one "
+                  "tree with a single root", ("link", roots[1]))
+    if not roots:
+        raise err("no root link: the joints form a cycle", ("joint", joints[0].name))
+    # depth first, children in document order: the matrix-stack traversal (an explicit
+    # stack of iterators, so a long chain does not hit the recursion limit)
+    order = []
+    stack = [iter(children[roots[0]])]
+    while stack:
+        jt = next(stack[-1], None)
+        if jt is None:
+            stack.pop()
+            continue
+        order.append(jt)
+        stack.append(iter(children[jt.child]))
+    if len(order) != len(joints):
+        reached = {roots[0]} | {jt.child for jt in order}
+        lost = [n for n in link_names if n not in reached]
+        raise err(f"links {lost} are not connected to the root {roots[0]!r}: their joints "
+                  "form a cycle", ("link", lost[0]))
+    return roots[0], order
+
+
+def _mimic_sources(joints, err):
+    """For each movable joint: (name of the joint whose q drives it, multiplier, offset)."""
+    by_name = {jt.name: jt for jt in joints}
+    out = {}
+    for jt in joints:
+        if not jt.movable:
+            continue
+        mult, off, cur, visited = 1.0, 0.0, jt, [jt.name]
+        while cur.mimic is not None:
+            m = cur.mimic
+            src = by_name.get(m.joint)
+            if src is None or not src.movable:
+                what = "does not exist" if src is None else "is fixed"
+                raise err(f"joint {cur.name!r} mimics {m.joint!r}, which {what}",
+                          ("joint", cur.name))
+            mult, off = mult * m.multiplier, mult * m.offset + off
+            if src.name in visited:
+                raise err(f"mimic joints form a cycle: {' -> '.join(visited + [src.name])}",
+                          ("joint", jt.name))
+            visited.append(src.name)
+            cur = src
+        out[jt.name] = (cur.name, mult, off)
+    return out
+
+
+def _plain_error(msg, where):
+    return KinlibError(msg)
+
+
+class Robot:
+    """A kinematic tree: links joined by revolute, continuous, prismatic and fixed joints.
+
+    Parameters
+    ----------
+    name : str
+    links : sequence of :class:`kinlib.model.Link`
+    joints : sequence of :class:`kinlib.model.Joint`
+    poses : mapping of pose name to q (length ``dof``), optional
+        Named configurations, e.g. ``{"zero": [0, ...], "ready": [...]}``.
+    reference : str, optional
+        Where the model's numbers come from.
+
+    The order of ``q`` is :attr:`joint_names`: the movable joints that do not mimic
+    another, in the order given. Build robots with :func:`kinlib.load_urdf`,
+    :meth:`Robot.from_dh` or the models in :mod:`kinlib.robots`.
+
+    >>> from kinlib.robots import planar_2r
+    >>> arm = planar_2r(1.0, 0.5)
+    >>> arm.dof, arm.joint_names, arm.tip
+    (2, ['joint1', 'joint2'], 'link2')
+    >>> arm.fk([np.pi / 2, 0.0])[:3, 3].round(12)
+    array([0. , 1.5, 0. ])
+    """
+
+    def __init__(self, name, links, joints, *, poses=None, reference=None, _error=None):
+        err = _error or _plain_error
+        if not isinstance(name, str) or not name:
+            raise KinlibError(f"Robot: name must be a non-empty string, got {name!r}")
+        links, joints = tuple(links), tuple(joints)
+        for x, cls in [(lk, Link) for lk in links] + [(jt, Joint) for jt in joints]:
+            if not isinstance(x, cls):
+                raise KinlibError(f"Robot {name!r}: expected {cls.__name__} objects, got "
+                                  f"{type(x).__name__}")
+        self.name = name
+        self.reference = reference
+        self.links = links
+        self.joints = joints
+        self.root, self._order = _tree(links, joints, err)
+        sources = _mimic_sources(joints, err)
+        self._movable = [jt for jt in joints if jt.movable and jt.mimic is None]
+        q_index = {jt.name: i for i, jt in enumerate(self._movable)}
+        self._frame = {self.root: 0}
+        for j, jt in enumerate(self._order):
+            self._frame[jt.child] = j + 1
+        self._table = _fk.FKTable(self._order, self._frame, q_index, sources)
+        # joints on the path root -> link, in traversal order, for fk(link=...)
+        self._path = {self.root: np.zeros(0, dtype=np.int64)}
+        for j, jt in enumerate(self._order):
+            self._path[jt.child] = np.append(self._path[jt.parent], j)
+        self._all = np.arange(len(self._order), dtype=np.int64)
+        leaves = [lk.name for lk in links if not any(jt.parent == lk.name for jt in joints)]
+        self.tip = leaves[0] if len(leaves) == 1 else None
+        self.poses = {}
+        for key, q in (poses or {}).items():
+            self.poses[key] = self._check_q(q, f"pose {key!r}")
+            self.poses[key].setflags(write=False)
+
+    # -- description -------------------------------------------------------------------
+    @property
+    def dof(self) -> int:
+        """Number of joint variables (length of q)."""
+        return len(self._movable)
+
+    @property
+    def joint_names(self) -> list[str]:
+        """Names of the joints that q drives, in the order of q."""
+        return [jt.name for jt in self._movable]
+
+    @property
+    def link_names(self) -> list[str]:
+        return [lk.name for lk in self.links]
+
+    @property
+    def limits(self) -> np.ndarray:
+        """(dof, 2) array of [lower, upper]; ±inf where a joint is unlimited."""
+        lim = np.array([jt.limits if jt.limits is not None else (-np.inf, np.inf)
+                        for jt in self._movable], dtype=float).reshape(-1, 2)
+        return lim
+
+    def joint(self, name: str) -> Joint:
+        """The :class:`Joint` called ``name``."""
+        for jt in self.joints:
+            if jt.name == name:
+                return jt
+        raise KinlibError(f"robot {self.name!r} has no joint {name!r}; joints: "
+                          f"{[jt.name for jt in self.joints]}")
+
+    def link(self, name: str) -> Link:
+        """The :class:`Link` called ``name``."""
+        self._frame_of(name)
+        return next(lk for lk in self.links if lk.name == name)
+
+    def traversal(self) -> list[Joint]:
+        """Joints in matrix-stack order: depth first from the root, children in given order."""
+        return list(self._order)
+
+    def __repr__(self) -> str:
+        kinds = "".join({"revolute": "R", "continuous": "R", "prismatic": "P"}[jt.type]
+                        for jt in self._movable)
+        return (f"Robot({self.name!r}, dof={self.dof} ({kinds}), links={len(self.links)}, "
+                f"tip={self.tip!r})")
+
+    # -- forward kinematics --------------------------------------------------------------
+    def _check_q(self, q, name="q") -> np.ndarray:
+        if isinstance(q, Mapping):
+            unknown = set(q) - set(self.joint_names)
+            if unknown:
+                raise KinlibError(f"{name}: unknown joints {sorted(unknown)}; robot "
+                                  f"{self.name!r} has {self.joint_names}")
+            q = [q.get(n, 0.0) for n in self.joint_names]
+        a = as_array(q, name)
+        if a.ndim == 0 or a.shape[-1] != self.dof:
+            raise KinlibError(
+                f"{name}: expected {self.dof} joint values (shape (..., {self.dof})) for robot "
+                f"{self.name!r} with joints {self.joint_names}, got shape {a.shape}"
+            )
+        return a
+
+    def check_limits(self, q, *, tol: float = 1e-9) -> np.ndarray:
+        """``q`` as an array if every joint is within its limits (± ``tol``), else raise.
+
+        The message names the joint, its limits, the value and the batch index.
+        """
+        a = self._check_q(q)
+        lim = self.limits
+        bad = (a < lim[:, 0] - tol) | (a > lim[:, 1] + tol)
+        if bad.any():
+            j = int(np.argwhere(bad)[0][-1])
+            where = fmt_index(a.shape[:-1], bad[..., j])
+            value = a[..., j][bad[..., j]].flat[0]
+            raise KinlibError(
+                f"q{where}: joint {self.joint_names[j]!r} = {value:.6g} is outside its limits "
+                f"[{lim[j, 0]:.6g}, {lim[j, 1]:.6g}]"
+            )
+        return a
+
+    def _frame_of(self, link) -> int:
+        if link not in self._frame:
+            raise KinlibError(f"robot {self.name!r} has no link {link!r}; links: "
+                              f"{self.link_names}")
+        return self._frame[link]
+
+    def _frames(self, q, sel, check_limits):
+        a = self.check_limits(q) if check_limits else self._check_q(q)
+        batch = a.shape[:-1]
+        return _fk.run(self._table, a.reshape(-1, self.dof), sel), batch
+
+    def fk(self, q, link=None, *, check_limits: bool = False) -> np.ndarray:
+        """Pose of ``link`` (default: :attr:`tip`) in the root frame, ``(..., 4, 4)``.
+
+        ``q`` has shape ``(..., dof)`` (or is a dict joint name → value, missing joints 0).
+        With ``check_limits=True`` a value outside a joint's limits raises.
+        """
+        if link is None:
+            if self.tip is None:
+                raise KinlibError(f"robot {self.name!r} branches (it has several leaf links); "
+                                  "pass link= to say which one")
+            link = self.tip
+        f = self._frame_of(link)
+        frames, batch = self._frames(q, self._path[link], check_limits)
+        return frames[:, f].reshape(batch + (4, 4))
+
+    def link_poses(self, q, *, check_limits: bool = False) -> dict[str, np.ndarray]:
+        """Pose of every link in the root frame: dict link name → ``(..., 4, 4)``."""
+        frames, batch = self._frames(q, self._all, check_limits)
+        return {name: frames[:, self._frame[name]].reshape(batch + (4, 4))
+                for name in self.link_names}
+
+    # -- other constructors and export ---------------------------------------------------
+    @classmethod
+    def from_dh(cls, rows, convention: str = "standard", *, name: str = "dh_robot",
+                poses=None, reference=None) -> Robot:
+        """A serial robot from a DH table; see :func:`kinlib.dh_robot.robot_from_dh`."""
+        from .dh_robot import robot_from_dh
+
+        return robot_from_dh(rows, convention, name=name, poses=poses, reference=reference)
+
+    def to_urdf(self, path=None) -> str:
+        """This robot as URDF text (written to ``path`` too if given)."""
+        from .urdf import robot_to_urdf
+
+        text = robot_to_urdf(self)
+        if path is not None:
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write(text)
+        return text

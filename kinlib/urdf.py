@@ -1,0 +1,363 @@
+"""Reading and writing URDF: the kinematic subset, with errors that name element and line.
+
+Read: ``<robot>``, ``<link>`` (with ``<visual>`` boxes, cylinders, spheres and meshes, and
+materials), ``<joint>`` of type revolute, continuous, prismatic or fixed with ``<origin>``,
+``<axis>`` (normalised), ``<limit>`` and ``<mimic>``. Other elements (``<inertial>``,
+``<collision>``, ``<dynamics>``, ``<transmission>``, ``<gazebo>``, ...) are skipped.
+
+The file is parsed with expat directly, so every element knows its line. Document type
+declarations are refused (they are how entity-expansion attacks work and URDF never needs
+them), and files larger than :data:`MAX_BYTES` or deeper/bigger than any robot are refused
+before they can use much memory or time.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from xml.parsers import expat
+
+import numpy as np
+
+from .errors import KinlibError, URDFError
+from .model import Joint, Link, Mimic, Visual, origin_from_xyz_rpy, xyz_rpy_from_origin
+
+__all__ = ["load_urdf", "robot_to_urdf", "MAX_BYTES"]
+
+MAX_BYTES = 16 * 2**20   # 16 MiB: the largest real URDFs are a few MB
+MAX_ELEMENTS = 200_000
+MAX_DEPTH = 64
+
+
+class _El:
+    __slots__ = ("attrib", "children", "line", "tag")
+
+    def __init__(self, tag, attrib, line):
+        self.tag, self.attrib, self.children, self.line = tag, attrib, [], line
+
+    def all(self, tag):
+        return [c for c in self.children if c.tag == tag]
+
+    def describe(self):
+        name = self.attrib.get("name")
+        return f"<{self.tag}{'' if name is None else f' name={name!r}'}>"
+
+
+class _Source:
+    """Builds URDFErrors that say where: ``file:line: <element name=...>: message``."""
+
+    def __init__(self, label):
+        self.label = label
+        self.lines = {}
+
+    def error(self, msg, el=None):
+        if el is None:
+            return URDFError(f"{self.label}: {msg}")
+        return URDFError(f"{self.label}:{el.line}: {el.describe()}: {msg}")
+
+    def tree_error(self, msg, where):
+        el = self.lines.get(where) if where else None
+        return URDFError(f"{self.label}{'' if el is None else f':{el.line}'}: {msg}")
+
+
+def _parse_xml(data: bytes, src: _Source) -> _El:
+    parser = expat.ParserCreate()
+    parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+    stack: list[_El] = []
+    top: list[_El] = []
+    count = [0]
+
+    def start(tag, attrib):
+        count[0] += 1
+        if count[0] > MAX_ELEMENTS:
+            raise src.error(f"more than {MAX_ELEMENTS} elements; this is not a robot")
+        if len(stack) >= MAX_DEPTH:
+            raise src.error(f"line {parser.CurrentLineNumber}: elements nested more than "
+                            f"{MAX_DEPTH} deep")
+        el = _El(tag, attrib, parser.CurrentLineNumber)
+        (stack[-1].children if stack else top).append(el)
+        stack.append(el)
+
+    def end(tag):
+        stack.pop()
+
+    def doctype(*args):
+        raise src.error(f"line {parser.CurrentLineNumber}: a <!DOCTYPE> declaration is not "
+                        "allowed in URDF (entity definitions can expand without bound)")
+
+    def entity(*args):
+        raise src.error(f"line {parser.CurrentLineNumber}: <!ENTITY> declarations are not "
+                        "allowed in URDF")
+
+    parser.StartElementHandler = start
+    parser.EndElementHandler = end
+    parser.StartDoctypeDeclHandler = doctype
+    parser.EntityDeclHandler = entity
+    try:
+        parser.Parse(data, True)
+    except expat.ExpatError as exc:
+        raise src.error(f"line {exc.lineno}: XML syntax error: {expat.errors.messages[exc.code]}"
+                        f" (column {exc.offset + 1})") from None
+    return top[0]
+
+
+def _floats(el: _El, attr: str, n: int, src: _Source, default=None):
+    text = el.attrib.get(attr)
+    if text is None:
+        if default is None:
+            raise src.error(f"missing attribute {attr}", el)
+        return np.array(default, dtype=float)
+    parts = text.split()
+    try:
+        vals = [float(p) for p in parts]
+    except ValueError:
+        raise src.error(f"{attr}={text!r}: expected {n} numbers", el) from None
+    if len(vals) != n:
+        raise src.error(f"{attr}={text!r}: expected {n} numbers, got {len(vals)}", el)
+    if not all(math.isfinite(v) for v in vals):
+        raise src.error(f"{attr}={text!r}: NaN or infinity is not allowed", el)
+    return np.array(vals)
+
+
+def _one(el: _El, tag: str, src: _Source, required: bool):
+    found = el.all(tag)
+    if len(found) > 1:
+        raise src.error(f"more than one <{tag}> (lines {[f.line for f in found]})", el)
+    if required and not found:
+        raise src.error(f"missing <{tag}>", el)
+    return found[0] if found else None
+
+
+def _name(el: _El, src: _Source, attr="name"):
+    name = el.attrib.get(attr)
+    if name is None or not name.strip():
+        raise src.error(f"missing or empty attribute {attr}", el)
+    return name
+
+
+def _origin(el: _El, src: _Source):
+    o = _one(el, "origin", src, required=False)
+    if o is None:
+        return np.eye(4)
+    return origin_from_xyz_rpy(_floats(o, "xyz", 3, src, (0, 0, 0)),
+                               _floats(o, "rpy", 3, src, (0, 0, 0)))
+
+
+def _visual(vis: _El, materials: dict, src: _Source):
+    geom = _one(vis, "geometry", src, required=True)
+    if len(geom.children) != 1:
+        raise src.error("expected exactly one shape in <geometry>", geom)
+    g = geom.children[0]
+    if g.tag == "box":
+        kind, size, fname = "box", _floats(g, "size", 3, src), None
+    elif g.tag == "cylinder":
+        kind, fname = "cylinder", None
+        size = np.concatenate([_floats(g, "radius", 1, src), _floats(g, "length", 1, src)])
+    elif g.tag == "sphere":
+        kind, size, fname = "sphere", _floats(g, "radius", 1, src), None
+    elif g.tag == "mesh":
+        kind, size, fname = "mesh", _floats(g, "scale", 3, src, (1, 1, 1)), _name(g, src,
+                                                                                 "filename")
+    else:
+        raise src.error(f"unknown geometry <{g.tag}>: expected box, cylinder, sphere or mesh", g)
+    rgba = None
+    mat = _one(vis, "material", src, required=False)
+    if mat is not None:
+        color = _one(mat, "color", src, required=False)
+        if color is not None:
+            rgba = _floats(color, "rgba", 4, src)
+        elif mat.attrib.get("name") in materials:
+            rgba = materials[mat.attrib["name"]]
+    try:
+        return Visual(kind, tuple(size), _origin(vis, src), None if rgba is None
+                      else tuple(np.clip(rgba, 0, 1)), fname)
+    except KinlibError as exc:
+        raise src.error(str(exc), g) from None
+
+
+def _joint(el: _El, src: _Source) -> Joint:
+    name = _name(el, src)
+    kind = el.attrib.get("type")
+    if kind is None:
+        raise src.error("missing attribute type", el)
+    if kind not in ("revolute", "continuous", "prismatic", "fixed"):
+        what = "kinlib does not support" if kind in ("floating", "planar") else "unknown"
+        raise src.error(f"{what} joint type {kind!r}; expected revolute, continuous, "
+                        "prismatic or fixed", el)
+    parent = _name(_one(el, "parent", src, required=True), src, "link")
+    child = _name(_one(el, "child", src, required=True), src, "link")
+    axis_el = _one(el, "axis", src, required=False)
+    axis = (1.0, 0.0, 0.0) if axis_el is None else _floats(axis_el, "xyz", 3, src, (1, 0, 0))
+    if not np.any(axis):
+        raise src.error("axis xyz is the zero vector; a joint axis needs a direction",
+                        axis_el)
+    limits = None
+    lim = _one(el, "limit", src, required=False)
+    if kind in ("revolute", "prismatic"):
+        if lim is None:
+            raise src.error(f"a {kind} joint needs <limit lower=... upper=...>", el)
+        lo = float(_floats(lim, "lower", 1, src, (0.0,))[0])
+        hi = float(_floats(lim, "upper", 1, src, (0.0,))[0])
+        if lo > hi:
+            raise src.error(f"lower={lo:g} is greater than upper={hi:g}", lim)
+        limits = (lo, hi)
+    mimic = None
+    m = _one(el, "mimic", src, required=False)
+    if m is not None:
+        mimic = Mimic(_name(m, src, "joint"),
+                      float(_floats(m, "multiplier", 1, src, (1.0,))[0]),
+                      float(_floats(m, "offset", 1, src, (0.0,))[0]))
+    try:
+        return Joint(name, kind, parent, child, origin=_origin(el, src), axis=axis,
+                     limits=limits, mimic=mimic)
+    except KinlibError as exc:
+        raise src.error(str(exc), el) from None
+
+
+def _read(path_or_xml) -> tuple[bytes, str]:
+    if isinstance(path_or_xml, bytes):
+        data, label = path_or_xml, "<urdf bytes>"
+    elif isinstance(path_or_xml, str) and path_or_xml.lstrip().startswith("<"):
+        data, label = path_or_xml.encode("utf-8"), "<urdf string>"
+    elif isinstance(path_or_xml, str | os.PathLike):
+        label = os.fspath(path_or_xml)
+        try:
+            size = os.path.getsize(label)
+            if size > MAX_BYTES:
+                raise URDFError(f"{label}: {size} bytes is larger than any robot description "
+                                f"(limit {MAX_BYTES} bytes)")
+            with open(label, "rb") as fh:
+                data = fh.read(MAX_BYTES + 1)
+        except OSError as exc:
+            raise URDFError(f"{label}: cannot read the file: {exc.strerror}") from None
+    else:
+        raise URDFError(f"load_urdf: expected a file path or URDF text, got "
+                        f"{type(path_or_xml).__name__}")
+    if len(data) > MAX_BYTES:
+        raise URDFError(f"{label}: {len(data)} bytes is larger than any robot description "
+                        f"(limit {MAX_BYTES} bytes)")
+    return data, label
+
+
+def load_urdf(path_or_xml, *, poses=None, reference=None):
+    """A :class:`~kinlib.Robot` from a URDF file path or URDF text.
+
+    Malformed input raises :class:`~kinlib.URDFError` naming the element and line.
+
+    >>> robot = load_urdf('''<robot name="pendulum">
+    ...   <link name="base"/> <link name="bob"/>
+    ...   <joint name="swing" type="continuous">
+    ...     <parent link="base"/> <child link="bob"/>
+    ...     <origin xyz="0 0 1"/> <axis xyz="0 2 0"/>
+    ...   </joint>
+    ... </robot>''')
+    >>> robot.joint("swing").axis
+    array([0., 1., 0.])
+    >>> robot.fk([np.pi / 2])[:3, 3]
+    array([0., 0., 1.])
+    """
+    from .robot import Robot
+
+    data, label = _read(path_or_xml)
+    src = _Source(label)
+    root = _parse_xml(data, src)
+    if root.tag != "robot":
+        raise src.error(f"the top element is <{root.tag}>, expected <robot>", root)
+    name = _name(root, src)
+    materials = {}
+    for mat in root.all("material"):
+        color = _one(mat, "color", src, required=False)
+        if color is not None:
+            materials[_name(mat, src)] = _floats(color, "rgba", 4, src)
+    links = []
+    for el in root.all("link"):
+        lname = _name(el, src)
+        src.lines.setdefault(("link", lname), el)
+        links.append(Link(lname, tuple(_visual(v, materials, src) for v in el.all("visual"))))
+    joints = []
+    for el in root.all("joint"):
+        jt = _joint(el, src)
+        src.lines.setdefault(("joint", jt.name), el)
+        joints.append(jt)
+    return Robot(name, links, joints, poses=poses, reference=reference, _error=src.tree_error)
+
+
+# -- writing ---------------------------------------------------------------------------
+def _num(x) -> str:
+    return " ".join(repr(float(v)) for v in np.atleast_1d(x))
+
+
+def _origin_xml(T, indent):
+    if np.array_equal(T, np.eye(4)):
+        return ""
+    xyz, rpy = xyz_rpy_from_origin(T)
+    return f'{indent}<origin xyz="{_num(xyz)}" rpy="{_num(rpy)}"/>\n'
+
+
+def _visual_xml(v: Visual) -> str:
+    shape = {
+        "box": lambda: f'<box size="{_num(v.size)}"/>',
+        "cylinder": lambda: f'<cylinder radius="{_num(v.size[0])}" length="{_num(v.size[1])}"/>',
+        "sphere": lambda: f'<sphere radius="{_num(v.size[0])}"/>',
+        "mesh": lambda: f'<mesh filename="{v.filename}" scale="{_num(v.size)}"/>',
+    }[v.kind]()
+    out = "    <visual>\n" + _origin_xml(v.origin, "      ")
+    out += f"      <geometry>{shape}</geometry>\n"
+    if v.rgba is not None:
+        out += f'      <material name=""><color rgba="{_num(v.rgba)}"/></material>\n'
+    return out + "    </visual>\n"
+
+
+UNLIMITED_PRISMATIC = 1e6  # URDF cannot say "unlimited" for a prismatic joint
+
+
+def robot_to_urdf(robot) -> str:
+    """URDF text for ``robot``; a joint with a ``post`` transform (standard DH) is written
+    as the moving joint into ``<child>_motion`` followed by a fixed joint ``<name>_post``,
+    so every link of the robot keeps its frame.
+    """
+    from xml.sax.saxutils import quoteattr
+
+    names = set(robot.link_names)
+    body, extra_links = [], []
+    for jt in robot.joints:
+        child = jt.child
+        has_post = not np.array_equal(jt.post, np.eye(4))
+        if has_post:
+            child = f"{jt.child}_motion"
+            if child in names:
+                raise KinlibError(f"cannot export: link name {child!r} is already taken")
+            extra_links.append(child)
+        kind = jt.type
+        if kind == "revolute" and jt.limits is not None and not np.isfinite(jt.limits).all():
+            kind = "continuous"
+        s = f"  <joint name={quoteattr(jt.name)} type={quoteattr(kind)}>\n"
+        s += f"    <parent link={quoteattr(jt.parent)}/>\n    <child link={quoteattr(child)}/>\n"
+        s += _origin_xml(jt.origin, "    ")
+        if jt.movable:
+            s += f'    <axis xyz="{_num(jt.axis)}"/>\n'
+        if kind in ("revolute", "prismatic"):
+            lo, hi = jt.limits if jt.limits is not None else (-np.inf, np.inf)
+            lo, hi = max(lo, -UNLIMITED_PRISMATIC), min(hi, UNLIMITED_PRISMATIC)
+            s += f'    <limit lower="{_num(lo)}" upper="{_num(hi)}" effort="0" velocity="0"/>\n'
+        if jt.mimic is not None:
+            m = jt.mimic
+            s += (f"    <mimic joint={quoteattr(m.joint)} multiplier=\"{_num(m.multiplier)}\" "
+                  f"offset=\"{_num(m.offset)}\"/>\n")
+        s += "  </joint>\n"
+        if has_post:
+            s += f"  <joint name={quoteattr(jt.name + '_post')} type=\"fixed\">\n"
+            s += (f"    <parent link={quoteattr(child)}/>\n"
+                  f"    <child link={quoteattr(jt.child)}/>\n")
+            s += _origin_xml(jt.post, "    ") + "  </joint>\n"
+        body.append(s)
+    links = []
+    for lk in robot.links:
+        if lk.visuals:
+            inner = "".join(_visual_xml(v) for v in lk.visuals)
+            links.append(f"  <link name={quoteattr(lk.name)}>\n{inner}  </link>\n")
+        else:
+            links.append(f"  <link name={quoteattr(lk.name)}/>\n")
+    links += [f"  <link name={quoteattr(n)}/>\n" for n in extra_links]
+    return (f'<?xml version="1.0"?>\n<robot name={quoteattr(robot.name)}>\n'
+            + "".join(links) + "".join(body) + "</robot>\n")
