@@ -21,7 +21,6 @@ import numpy as np
 __all__ = ["FKTable", "run"]
 
 _KIND = {"fixed": 0, "revolute": 1, "continuous": 1, "prismatic": 2}
-MIN_BATCH_COMPILED = 64  # below this the numpy path wins (no dispatch cost)
 
 
 class FKTable:
@@ -56,12 +55,17 @@ class FKTable:
             else:
                 self.M[j, 0] = O @ P
         self.n = n
-        for a in (self.parent, self.kind, self.qidx, self.mult, self.offset, self.M):
+        # packed for the compiled kernel (fewer arguments, less dispatch cost)
+        self.ints = np.ascontiguousarray(np.stack([self.parent, self.kind, self.qidx]))
+        self.floats = np.ascontiguousarray(np.stack([self.mult, self.offset]))
+        for a in (self.parent, self.kind, self.qidx, self.mult, self.offset, self.M, self.ints,
+                  self.floats):
             a.setflags(write=False)
 
     def coefficients(self, q: np.ndarray, sel: np.ndarray):
         """``f1, f2`` of the selected joints for q of shape (N, dof): each (N, len(sel))."""
-        qe = q[:, self.qidx[sel]] * self.mult[sel] + self.offset[sel]
+        padded = np.concatenate([q, np.zeros((q.shape[0], 1))], axis=1)  # qidx -1: fixed
+        qe = padded[:, self.qidx[sel]] * self.mult[sel] + self.offset[sel]
         kind = self.kind[sel]
         rev = kind == 1
         f1 = np.where(rev, np.sin(qe), np.where(kind == 2, qe, 0.0))
@@ -87,35 +91,36 @@ def _compiled():
     except ImportError:
         return None
 
-    @numba.njit(cache=True, fastmath=False)
-    def kernel(q, sel, parent, kind, qidx, mult, offset, M, out):  # pragma: no cover
+    @numba.njit(cache=True)
+    def kernel(q, sel, ints, floats, M):  # pragma: no cover - compiled
         N = q.shape[0]
-        L = np.empty((4, 4))
+        out = np.empty((N, ints.shape[1] + 1, 4, 4))
+        L = np.empty((3, 4))
         for i in range(N):
+            for r in range(4):
+                for c in range(4):
+                    out[i, 0, r, c] = 1.0 if r == c else 0.0
             for s in range(sel.shape[0]):
                 j = sel[s]
-                k = kind[j]
-                if k == 0:
-                    f1 = 0.0
-                    f2 = 0.0
-                else:
-                    qe = q[i, qidx[j]] * mult[j] + offset[j]
+                k = ints[1, j]
+                f1 = 0.0
+                f2 = 0.0
+                if k != 0:
+                    qe = q[i, ints[2, j]] * floats[0, j] + floats[1, j]
                     if k == 1:
                         f1 = np.sin(qe)
                         h = np.sin(0.5 * qe)
                         f2 = 2.0 * h * h
                     else:
                         f1 = qe
-                        f2 = 0.0
                 for r in range(3):
                     for c in range(4):
                         L[r, c] = M[j, 0, r, c] + f1 * M[j, 1, r, c] + f2 * M[j, 2, r, c]
-                p = parent[j]
+                p = ints[0, j]
                 for r in range(3):
                     for c in range(4):
-                        acc = 0.0
-                        for m in range(3):
-                            acc += out[i, p, r, m] * L[m, c]
+                        acc = out[i, p, r, 0] * L[0, c] + out[i, p, r, 1] * L[1, c] \
+                            + out[i, p, r, 2] * L[2, c]
                         if c == 3:
                             acc += out[i, p, r, 3]
                         out[i, j + 1, r, c] = acc
@@ -123,6 +128,7 @@ def _compiled():
                 out[i, j + 1, 3, 1] = 0.0
                 out[i, j + 1, 3, 2] = 0.0
                 out[i, j + 1, 3, 3] = 1.0
+        return out
 
     return kernel
 
@@ -131,15 +137,13 @@ def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None
     """Frames (N, 1 + n_joints, 4, 4) for q (N, dof); only frames of ``sel`` are filled.
 
     Frame 0 is the root link (identity); frame ``j + 1`` is joint ``j``'s child link.
-    ``compiled=None`` uses the numba kernel when it is available and N is large enough.
+    ``compiled=None`` uses the numba kernel when numba is available (``KINLIB_NUMBA=0``
+    turns it off); numba is imported on the first call, not with kinlib.
     """
-    N = q.shape[0]
-    out = np.empty((N, table.n + 1, 4, 4))
-    out[:, 0] = np.eye(4)
     kernel = _compiled() if compiled is not False else None
-    if kernel is not None and (compiled or N >= MIN_BATCH_COMPILED):
-        kernel(np.ascontiguousarray(q), sel, table.parent, table.kind, table.qidx, table.mult,
-               table.offset, table.M, out)
-    else:
-        _numpy(table, q, sel, out)
+    if kernel is not None:
+        return kernel(q, sel, table.ints, table.floats, table.M)
+    out = np.empty((q.shape[0], table.n + 1, 4, 4))
+    out[:, 0] = np.eye(4)
+    _numpy(table, q, sel, out)
     return out

@@ -251,7 +251,7 @@ class Robot:
     def _frames(self, q, sel, check_limits):
         a = self.check_limits(q) if check_limits else self._check_q(q)
         batch = a.shape[:-1]
-        return _fk.run(self._table, a.reshape(-1, self.dof), sel), batch
+        return _fk.run(self._table, a.reshape(int(np.prod(batch)), self.dof), sel), batch
 
     def fk(self, q, link=None, *, check_limits: bool = False) -> np.ndarray:
         """Pose of ``link`` (default: :attr:`tip`) in the root frame, ``(..., 4, 4)``.
