@@ -30,7 +30,9 @@ test: lint
 	$(BIN)/python -m pytest
 
 bench: $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[bench]'
 	$(BIN)/python bench/bench_conversions.py
+	$(BIN)/python bench/bench_fk.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info

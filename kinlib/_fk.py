@@ -18,7 +18,7 @@ import os
 
 import numpy as np
 
-__all__ = ["FKTable", "run"]
+__all__ = ["ChainTable", "FKTable", "run", "run_chain"]
 
 _KIND = {"fixed": 0, "revolute": 1, "continuous": 1, "prismatic": 2}
 
@@ -74,6 +74,47 @@ class FKTable:
         return f1, f2
 
 
+def _z_to(u: np.ndarray) -> np.ndarray:
+    """A rotation B (as 4×4) with ``B @ e_z = u``: columns x', y', u, orthonormal."""
+    B = np.eye(4)
+    if np.array_equal(u, [0.0, 0.0, 1.0]):
+        return B  # DH joints: no rounding at all
+    helper = np.eye(3)[np.argmin(np.abs(u))]  # the coordinate axis least aligned with u
+    x = np.cross(helper, u)
+    x /= np.linalg.norm(x)
+    B[:3, 0], B[:3, 1], B[:3, 2] = x, np.cross(u, x), u
+    return B
+
+
+class ChainTable:
+    r"""A path of joints from the root as ``D_0 · Z(q_1) · D_1 ⋯ Z(q_m) · D_m``.
+
+    Every moving joint ``origin · motion(u, q) · post`` is rewritten with a constant
+    rotation ``B`` that takes z to its axis u: ``(origin B) · Z(q) · (Bᵀ post)``, where
+    ``Z`` is ``Rz(q)`` (revolute) or ``Tz(q)`` (prismatic); neighbouring constants (and
+    fixed joints) are multiplied together once. Applying ``Rz(q)`` on the right mixes two
+    columns (12 products), so a joint costs one sin/cos pair and about 50 products.
+    """
+
+    def __init__(self, table: FKTable, joints, sel):
+        D = [np.eye(4)]
+        kinds, qidx, mult, offset = [], [], [], []
+        for j, jt in zip(sel, joints, strict=True):
+            if table.kind[j] == 0:
+                D[-1] = D[-1] @ jt.origin @ jt.post
+                continue
+            B = _z_to(jt.axis)
+            D[-1] = D[-1] @ jt.origin @ B
+            kinds.append(table.kind[j])
+            qidx.append(table.qidx[j])
+            mult.append(table.mult[j])
+            offset.append(table.offset[j])
+            D.append(B.T @ jt.post)
+        self.D = np.ascontiguousarray(np.stack(D)[:, :3, :])
+        self.ints = np.array([kinds, qidx], dtype=np.int64).reshape(2, -1)
+        self.floats = np.array([mult, offset], dtype=float).reshape(2, -1)
+
+
 def _numpy(table: FKTable, q: np.ndarray, sel: np.ndarray, out: np.ndarray) -> None:
     f1, f2 = table.coefficients(q, sel)
     M = table.M[sel]
@@ -84,53 +125,28 @@ def _numpy(table: FKTable, q: np.ndarray, sel: np.ndarray, out: np.ndarray) -> N
 
 @functools.cache
 def _compiled():
+    """The numba kernels module, or None when numba is missing or KINLIB_NUMBA=0."""
     if os.environ.get("KINLIB_NUMBA", "1") == "0":
         return None
     try:
-        import numba
+        from . import _fk_numba
     except ImportError:
         return None
+    return _fk_numba
 
-    @numba.njit(cache=True)
-    def kernel(q, sel, ints, floats, M):  # pragma: no cover - compiled
-        N = q.shape[0]
-        out = np.empty((N, ints.shape[1] + 1, 4, 4))
-        L = np.empty((3, 4))
-        for i in range(N):
-            for r in range(4):
-                for c in range(4):
-                    out[i, 0, r, c] = 1.0 if r == c else 0.0
-            for s in range(sel.shape[0]):
-                j = sel[s]
-                k = ints[1, j]
-                f1 = 0.0
-                f2 = 0.0
-                if k != 0:
-                    qe = q[i, ints[2, j]] * floats[0, j] + floats[1, j]
-                    if k == 1:
-                        f1 = np.sin(qe)
-                        h = np.sin(0.5 * qe)
-                        f2 = 2.0 * h * h
-                    else:
-                        f1 = qe
-                for r in range(3):
-                    for c in range(4):
-                        L[r, c] = M[j, 0, r, c] + f1 * M[j, 1, r, c] + f2 * M[j, 2, r, c]
-                p = ints[0, j]
-                for r in range(3):
-                    for c in range(4):
-                        acc = out[i, p, r, 0] * L[0, c] + out[i, p, r, 1] * L[1, c] \
-                            + out[i, p, r, 2] * L[2, c]
-                        if c == 3:
-                            acc += out[i, p, r, 3]
-                        out[i, j + 1, r, c] = acc
-                out[i, j + 1, 3, 0] = 0.0
-                out[i, j + 1, 3, 1] = 0.0
-                out[i, j + 1, 3, 2] = 0.0
-                out[i, j + 1, 3, 3] = 1.0
-        return out
 
-    return kernel
+PARALLEL_MIN = 4096  # below this, starting the threads costs more than it saves
+
+
+def run_chain(chain: ChainTable, table: FKTable, q: np.ndarray, sel: np.ndarray, *,
+              compiled: bool | None = None):
+    """Pose (N, 4, 4) at the end of the joint path ``sel`` (a chain from the root)."""
+    kernels = _compiled() if compiled is not False else None
+    if kernels is not None:
+        fn = kernels.chain_parallel if q.shape[0] >= PARALLEL_MIN else kernels.chain
+        return fn(q, chain.ints, chain.floats, chain.D)
+    frames = run(table, q, sel, compiled=False)
+    return frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
 
 
 def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None = None):
@@ -140,9 +156,9 @@ def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None
     ``compiled=None`` uses the numba kernel when numba is available (``KINLIB_NUMBA=0``
     turns it off); numba is imported on the first call, not with kinlib.
     """
-    kernel = _compiled() if compiled is not False else None
-    if kernel is not None:
-        return kernel(q, sel, table.ints, table.floats, table.M)
+    kernels = _compiled() if compiled is not False else None
+    if kernels is not None:
+        return kernels.tree(q, sel, table.ints, table.floats, table.M)
     out = np.empty((q.shape[0], table.n + 1, 4, 4))
     out[:, 0] = np.eye(4)
     _numpy(table, q, sel, out)

@@ -156,6 +156,7 @@ class Robot:
         for j, jt in enumerate(self._order):
             self._path[jt.child] = np.append(self._path[jt.parent], j)
         self._all = np.arange(len(self._order), dtype=np.int64)
+        self._chains = {}  # link -> _fk.ChainTable, filled on first fk(link=...)
         leaves = [lk.name for lk in links if not any(jt.parent == lk.name for jt in joints)]
         self.tip = leaves[0] if len(leaves) == 1 else None
         self.poses = {}
@@ -242,16 +243,20 @@ class Robot:
             )
         return a
 
+    def _chain(self, link) -> _fk.ChainTable:
+        """The path root → link prepared for the chain kernel (built once per link)."""
+        chain = self._chains.get(link)
+        if chain is None:
+            path = self._path[link]
+            chain = _fk.ChainTable(self._table, [self._order[j] for j in path], path)
+            self._chains[link] = chain
+        return chain
+
     def _frame_of(self, link) -> int:
         if link not in self._frame:
             raise KinlibError(f"robot {self.name!r} has no link {link!r}; links: "
                               f"{self.link_names}")
         return self._frame[link]
-
-    def _frames(self, q, sel, check_limits):
-        a = self.check_limits(q) if check_limits else self._check_q(q)
-        batch = a.shape[:-1]
-        return _fk.run(self._table, a.reshape(int(np.prod(batch)), self.dof), sel), batch
 
     def fk(self, q, link=None, *, check_limits: bool = False) -> np.ndarray:
         """Pose of ``link`` (default: :attr:`tip`) in the root frame, ``(..., 4, 4)``.
@@ -264,13 +269,18 @@ class Robot:
                 raise KinlibError(f"robot {self.name!r} branches (it has several leaf links); "
                                   "pass link= to say which one")
             link = self.tip
-        f = self._frame_of(link)
-        frames, batch = self._frames(q, self._path[link], check_limits)
-        return frames[:, f].reshape(batch + (4, 4))
+        self._frame_of(link)
+        a = self.check_limits(q) if check_limits else self._check_q(q)
+        batch = a.shape[:-1]
+        T = _fk.run_chain(self._chain(link), self._table,
+                          a.reshape(int(np.prod(batch)), self.dof), self._path[link])
+        return T.reshape(batch + (4, 4))
 
     def link_poses(self, q, *, check_limits: bool = False) -> dict[str, np.ndarray]:
         """Pose of every link in the root frame: dict link name → ``(..., 4, 4)``."""
-        frames, batch = self._frames(q, self._all, check_limits)
+        a = self.check_limits(q) if check_limits else self._check_q(q)
+        batch = a.shape[:-1]
+        frames = _fk.run(self._table, a.reshape(int(np.prod(batch)), self.dof), self._all)
         return {name: frames[:, self._frame[name]].reshape(batch + (4, 4))
                 for name in self.link_names}
 

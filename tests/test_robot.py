@@ -226,6 +226,29 @@ def test_compiled_kernel_equals_numpy(model):
     np.testing.assert_allclose(a, b, atol=1e-14)
 
 
+def test_chain_kernel_all_axis_cases():
+    """fk's chain form (axis rotated onto z) against the tree's numpy path, every axis case,
+    serial and parallel batches."""
+    axes = [(0, 0, 1), (0, 0, -1), (1, 0, 0), (0, -1, 0), (0.3, -0.2, 0.9), (1e-9, 0, -1),
+            (-0.5, 0.5, -0.7)]
+    rng = np.random.default_rng(8)
+    links, joints = [Link("base")], []
+    for i, u in enumerate(axes * 2):
+        links.append(Link(f"l{i}"))
+        origin = hom(Rotation.random(random_state=i).as_matrix(), rng.normal(size=3))
+        kind = ["revolute", "prismatic", "fixed", "continuous"][i % 4]
+        joints.append(Joint(f"j{i}", kind, links[-2].name, f"l{i}", origin=origin, axis=u,
+                            limits=None if kind in ("fixed", "continuous") else (-2, 2)))
+    robot = Robot("axes", links, joints)
+    q = rng.uniform(-2, 2, (_fk.PARALLEL_MIN + 3, robot.dof))
+    reference = _fk.run(robot._table, q, robot._all, compiled=False)
+    for link in ("l3", "l6", "l13"):
+        expected = reference[:, robot._frame[link]]
+        np.testing.assert_allclose(robot.fk(q, link=link), expected, atol=1e-12)
+        np.testing.assert_allclose(robot.fk(q[:7], link=link), expected[:7], atol=1e-12)
+    np.testing.assert_allclose(robot.fk(q[0], link="base"), np.eye(4), atol=0)
+
+
 def test_numba_is_optional_and_lazy():
     """Building robots never imports numba; FK imports it on first use unless disabled."""
     code = ("import sys, numpy as np, kinlib.robots as r; p = r.puma560(); "
