@@ -187,6 +187,8 @@ def _joint(el: _El, src: _Source) -> Joint:
     parent = _name(_one(el, "parent", src, required=True), src, "link")
     child = _name(_one(el, "child", src, required=True), src, "link")
     axis_el = _one(el, "axis", src, required=False)
+    if kind == "fixed":
+        axis_el = None  # as urdfdom: a fixed joint's axis is never read (real files say 0 0 0)
     axis = (1.0, 0.0, 0.0) if axis_el is None else _floats(axis_el, "xyz", 3, src, (1, 0, 0))
     if not np.any(axis):
         raise src.error("axis xyz is the zero vector; a joint axis needs a direction",
