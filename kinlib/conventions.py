@@ -55,14 +55,22 @@ Dual quaternions (Daniilidis 1999)
 Robots
     URDF: a joint's axis is expressed in the joint frame, which is the child link's frame:
     ``T_world_child = T_world_parent @ T_origin(xyz, rpy) @ motion(axis, q)`` (the matrix
-    stack). Denavit–Hartenberg: standard ``A_i = Rz(θ) Tz(d) Tx(a) Rx(α)``; modified (Craig)
-    only when asked. The geometric Jacobian is 6×n with rows ``[v; ω]`` in the base frame.
+    stack); ``rpy`` means ``matrix_from_euler(rpy, "xyz")`` = ``Rz(yaw) Ry(pitch) Rx(roll)``.
+    A fixed joint's axis is ignored, as urdfdom does. The order of q is
+    ``robot.joint_names``: the movable joints that do not mimic another, in document order
+    (DH: row order). Poses are in the root link's frame.
+    Denavit–Hartenberg: standard ``A_i = Rz(θ) Tz(d) Tx(a) Rx(α)``; modified (Craig,
+    ``Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)``) only when asked. The joint variable
+    replaces θ (revolute) or d (prismatic), plus the row's ``offset``. Link ``i`` of a DH
+    robot is DH frame ``i``; ``link0`` is the base. The geometric Jacobian is 6×n with rows
+    ``[v; ω]`` in the base frame.
 
 Batches and symbols
     Every numeric function accepts leading batch dimensions — ``(..., 3, 3)``, ``(..., 4)``,
     ``(N, n_joints)`` — and returns the matching batch. The elementary constructors
     (``rotx``, ``roty``, ``rotz``, ``skew``, ``matrix_from_axis_angle``,
-    ``matrix_from_euler``, ``transform``) given sympy expressions return ``sympy.Matrix``.
+    ``matrix_from_euler``, ``transform``, ``dh_transform``, ``mdh_transform``) given sympy
+    expressions return ``sympy.Matrix``.
 
 Bad input
     Raises :class:`kinlib.KinlibError` (a ``ValueError``) saying what was expected, what
