@@ -58,7 +58,7 @@ def color_int(color, name: str = "color") -> int:
             or (c < 0).any() or (c > 1).any():
         raise KinlibError(f"{name}: expected 0xRRGGBB, '#rrggbb' or (r, g, b[, a]) in [0, 1], "
                           f"got {color!r}")
-    r, g, b = (int(round(255 * x)) for x in c[:3])
+    r, g, b = (int(x) for x in np.rint(255 * c[:3]))
     return (r << 16) | (g << 8) | b
 
 

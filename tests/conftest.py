@@ -1,0 +1,36 @@
+"""Shared fixtures of the visualizer tests (the meshcat server itself: ../conftest.py)."""
+
+import uuid
+
+import pytest
+
+STL = """solid t
+facet normal 0 0 1
+ outer loop
+  vertex 0 0 0
+  vertex 0.1 0 0
+  vertex 0 0.1 0
+ endloop
+endfacet
+endsolid t
+"""
+
+
+@pytest.fixture
+def make_viz(tmp_path):
+    """Build visualizers on fresh prefixes; delete them from the shared scene afterwards."""
+    (tmp_path / "tri.stl").write_text(STL)
+    made = []
+
+    def make(robot, **kw):
+        kw.setdefault("prefix", f"test_{uuid.uuid4().hex[:8]}")
+        kw.setdefault("mesh_dir", tmp_path)
+        from kinlib.viz import RobotVisualizer
+
+        v = RobotVisualizer(robot, **kw)
+        made.append(v)
+        return v
+
+    yield make
+    for v in made:
+        v.delete()
