@@ -85,7 +85,18 @@ def _stop_server(proc: subprocess.Popen) -> None:
         proc.wait(timeout=5.0)
 
 
+def _hypothesis_profile() -> None:
+    """Property tests draw the same examples on every run (reproducible CI); set
+    ``HYPOTHESIS_PROFILE=explore`` to draw new random examples locally."""
+    from hypothesis import settings
+
+    settings.register_profile("kinlib", derandomize=True, print_blob=True)
+    settings.register_profile("explore", derandomize=False, print_blob=True)
+    settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "kinlib"))
+
+
 def pytest_configure(config):
+    _hypothesis_profile()
     if os.environ.get(ZMQ_ENV) or hasattr(config, "workerinput"):
         return  # a server is given (or an xdist worker: the controller started it)
     proc, zmq_url, web_url, log = _start_server()

@@ -92,9 +92,10 @@ def test_matrix_from_axis_angle_matches_textbook_and_scipy_batch():
 @given(u=unit_vectors(), t=st.floats(-4 * PI, 4 * PI))
 def test_matrix_from_axis_angle_property(u, t):
     R = kl.matrix_from_axis_angle(u, t)
-    assert max_err(R, rodrigues_textbook(u, t)) < 1e-15
+    # a few ulps: both formulas round differently (found: 1.1e-15 at t = 9 rad)
+    assert max_err(R, rodrigues_textbook(u, t)) < 4e-15
     assert max_err(R, Rotation.from_rotvec(u * t).as_matrix()) < 1e-14
-    assert max_err(R @ u, u) < 1e-15  # the axis is fixed
+    assert max_err(R @ u, u) < 4e-15  # the axis is fixed
     assert np.trace(R) == pytest.approx(1.0 + 2.0 * np.cos(t), abs=1e-14)
 
 
