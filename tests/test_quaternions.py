@@ -333,7 +333,7 @@ def test_quat_from_matrix_exact_half_turns(u):
     assume(np.linalg.norm(u) > 1e-3)
     u = u / np.linalg.norm(u)
     R = 2.0 * np.outer(u, u) - np.eye(3)  # 180° about u, trace −1
-    assert np.trace(R) == pytest.approx(-1.0, abs=1e-15)
+    assert np.trace(R) == pytest.approx(-1.0, abs=4e-15)  # the construction itself rounds
     q = kl.quat_from_matrix(R)
     assert q[0] >= 0.0
     assert abs(q[0]) < 1e-15
