@@ -13,21 +13,12 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 
 import numpy as np
 from scipy.spatial.transform import Rotation
+from timing import best_time  # bench/timing.py (the script's folder is on sys.path)
 
 import kinlib as kl
-
-
-def best_time(fn, repeat: int) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def cases(n: int, seed: int = 0):

@@ -20,21 +20,12 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 import warnings
 
 import numpy as np
+from timing import best_time  # bench/timing.py (the script's folder is on sys.path)
 
 from kinlib.robots import puma560
-
-
-def best_time(fn, repeat: int) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def peers(robot):

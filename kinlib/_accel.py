@@ -18,7 +18,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-__all__ = ["MIN_BATCH", "kernels"]
+__all__ = ["MIN_BATCH", "kernels", "numba_disabled"]
 
 #: Smallest batch for which a compiled kernel is used.
 MIN_BATCH = 2048
@@ -102,10 +102,15 @@ def _build(njit):
     )
 
 
+def numba_disabled() -> bool:
+    """True when the environment says ``KINLIB_NUMBA=0``: use the numpy paths only."""
+    return os.environ.get("KINLIB_NUMBA", "1") == "0"
+
+
 @functools.cache
 def kernels():
     """The compiled kernels, or ``None`` when numba is missing or disabled."""
-    if os.environ.get("KINLIB_NUMBA", "1") == "0":
+    if numba_disabled():
         return None
     try:
         import numba

@@ -14,9 +14,10 @@ seed 000, with the stack replaced by each frame's parent index.
 from __future__ import annotations
 
 import functools
-import os
 
 import numpy as np
+
+from ._accel import numba_disabled
 
 __all__ = ["ChainTable", "FKTable", "run", "run_chain"]
 
@@ -126,7 +127,7 @@ def _numpy(table: FKTable, q: np.ndarray, sel: np.ndarray, out: np.ndarray) -> N
 @functools.cache
 def _compiled():
     """The numba kernels module, or None when numba is missing or KINLIB_NUMBA=0."""
-    if os.environ.get("KINLIB_NUMBA", "1") == "0":
+    if numba_disabled():
         return None
     try:
         from . import _fk_numba

@@ -13,6 +13,7 @@ from .errors import KinlibError
 
 __all__ = [
     "as_array",
+    "as_limits",
     "as_tol",
     "as_unit_vectors",
     "unit_rows",
@@ -98,6 +99,16 @@ def as_tol(tol, name: str = "tol") -> float:
     if a.ndim or a < 0:
         raise KinlibError(f"{name}: expected one number >= 0, got {_short(tol)}")
     return float(a)
+
+
+def as_limits(limits, where: str) -> tuple[float, float]:
+    """Joint limits ``(lower, upper)`` with ``lower <= upper`` (±inf allowed, NaN not)."""
+    lim = as_array(limits, f"{where} limits", finite=False)
+    if lim.shape != (2,) or np.isnan(lim).any() or lim[0] > lim[1]:
+        raise KinlibError(
+            f"{where}: limits must be (lower, upper) with lower <= upper, got {limits!r}"
+        )
+    return float(lim[0]), float(lim[1])
 
 
 def unit_rows(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

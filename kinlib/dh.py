@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_array, broadcast, is_symbolic
+from ._validate import as_array, as_limits, broadcast, is_symbolic
 from .errors import KinlibError
 
 __all__ = ["DHRow", "dh_transform", "mdh_transform", "as_dh_row"]
@@ -131,15 +131,10 @@ class DHRow:
                 f"{where}: joint must be one of {', '.join(JOINT_KINDS)}, got {self.joint!r}"
             )
         if self.limits is not None:
-            lim = as_array(self.limits, f"{where}: limits", finite=False)
-            if lim.shape != (2,) or np.isnan(lim).any() or lim[0] > lim[1]:
-                raise KinlibError(
-                    f"{where}: limits must be (lower, upper) with lower <= upper, "
-                    f"got {self.limits!r}"
-                )
+            limits = as_limits(self.limits, where)
             if self.joint == "fixed":
                 raise KinlibError(f"{where}: a fixed row has no joint variable to limit")
-            object.__setattr__(self, "limits", (float(lim[0]), float(lim[1])))
+            object.__setattr__(self, "limits", limits)
         if self.name is not None and (not isinstance(self.name, str) or not self.name):
             raise KinlibError(f"{where}: name must be a non-empty string, got {self.name!r}")
 

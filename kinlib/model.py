@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import as_array, as_unit_vectors
+from ._validate import as_array, as_limits, as_unit_vectors
 from .errors import KinlibError
 from .euler import matrix_from_euler
 from .transforms import check_transform
@@ -150,13 +150,7 @@ class Joint:
                 raise KinlibError(f"{where}: a fixed joint has no limits")
             object.__setattr__(self, "limits", None)
         elif self.limits is not None:
-            lim = as_array(self.limits, f"{where} limits", finite=False)
-            if lim.shape != (2,) or np.isnan(lim).any() or lim[0] > lim[1]:
-                raise KinlibError(
-                    f"{where}: limits must be (lower, upper) with lower <= upper, got "
-                    f"{self.limits!r}"
-                )
-            object.__setattr__(self, "limits", (float(lim[0]), float(lim[1])))
+            object.__setattr__(self, "limits", as_limits(self.limits, where))
         if self.mimic is not None:
             m = self.mimic
             if not isinstance(m, Mimic):
