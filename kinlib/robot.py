@@ -30,12 +30,12 @@ def _tree(links, joints, err):
     seen = set()
     for lk in links:
         if lk.name in seen:
-            raise err(f"duplicate link name {lk.name!r}", ("link", lk.name))
+            raise err(f"duplicate link name {lk.name!r}", ("link", lk.name), -1)
         seen.add(lk.name)
     jseen, parent_joint, children = set(), {}, {n: [] for n in link_names}
     for jt in joints:
         if jt.name in jseen:
-            raise err(f"duplicate joint name {jt.name!r}", ("joint", jt.name))
+            raise err(f"duplicate joint name {jt.name!r}", ("joint", jt.name), -1)
         jseen.add(jt.name)
         for role in ("parent", "child"):
             if getattr(jt, role) not in seen:
@@ -101,7 +101,7 @@ def _mimic_sources(joints, err):
     return out
 
 
-def _plain_error(msg, where):
+def _plain_error(msg, where, occurrence=0):
     return KinlibError(msg)
 
 

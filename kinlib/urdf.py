@@ -30,17 +30,25 @@ MAX_DEPTH = 64
 
 
 class _El:
-    __slots__ = ("attrib", "children", "line", "tag")
+    __slots__ = ("attrib", "children", "line", "parent", "tag")
 
-    def __init__(self, tag, attrib, line):
+    def __init__(self, tag, attrib, line, parent):
         self.tag, self.attrib, self.children, self.line = tag, attrib, [], line
+        self.parent = parent
 
     def all(self, tag):
         return [c for c in self.children if c.tag == tag]
 
     def describe(self):
+        """``<joint name='j1'> <origin>``: the element, after its nearest named ancestor."""
         name = self.attrib.get("name")
-        return f"<{self.tag}{'' if name is None else f' name={name!r}'}>"
+        me = f"<{self.tag}{'' if name is None else f' name={name!r}'}>"
+        up = self.parent
+        while name is None and up is not None and up.tag != "robot":
+            if "name" in up.attrib:
+                return f"<{up.tag} name={up.attrib['name']!r}> {me}"
+            up = up.parent
+        return me
 
 
 class _Source:
@@ -55,9 +63,10 @@ class _Source:
             return URDFError(f"{self.label}: {msg}")
         return URDFError(f"{self.label}:{el.line}: {el.describe()}: {msg}")
 
-    def tree_error(self, msg, where):
-        el = self.lines.get(where) if where else None
-        return URDFError(f"{self.label}{'' if el is None else f':{el.line}'}: {msg}")
+    def tree_error(self, msg, where, occurrence=0):
+        els = self.lines.get(where) if where else None
+        line = f":{els[occurrence].line}" if els else ""
+        return URDFError(f"{self.label}{line}: {msg}")
 
 
 def _parse_xml(data: bytes, src: _Source) -> _El:
@@ -74,7 +83,7 @@ def _parse_xml(data: bytes, src: _Source) -> _El:
         if len(stack) >= MAX_DEPTH:
             raise src.error(f"line {parser.CurrentLineNumber}: elements nested more than "
                             f"{MAX_DEPTH} deep")
-        el = _El(tag, attrib, parser.CurrentLineNumber)
+        el = _El(tag, attrib, parser.CurrentLineNumber, stack[-1] if stack else None)
         (stack[-1].children if stack else top).append(el)
         stack.append(el)
 
@@ -101,6 +110,10 @@ def _parse_xml(data: bytes, src: _Source) -> _El:
     return top[0]
 
 
+def _count(n: int) -> str:
+    return "a number" if n == 1 else f"{n} numbers"
+
+
 def _floats(el: _El, attr: str, n: int, src: _Source, default=None):
     text = el.attrib.get(attr)
     if text is None:
@@ -111,9 +124,9 @@ def _floats(el: _El, attr: str, n: int, src: _Source, default=None):
     try:
         vals = [float(p) for p in parts]
     except ValueError:
-        raise src.error(f"{attr}={text!r}: expected {n} numbers", el) from None
+        raise src.error(f"{attr}={text!r}: expected {_count(n)}", el) from None
     if len(vals) != n:
-        raise src.error(f"{attr}={text!r}: expected {n} numbers, got {len(vals)}", el)
+        raise src.error(f"{attr}={text!r}: expected {_count(n)}, got {len(vals)}", el)
     if not all(math.isfinite(v) for v in vals):
         raise src.error(f"{attr}={text!r}: NaN or infinity is not allowed", el)
     return np.array(vals)
@@ -171,6 +184,8 @@ def _visual(vis: _El, materials: dict, src: _Source):
     try:
         return Visual(kind, tuple(size), _origin(vis, src), None if rgba is None
                       else tuple(np.clip(rgba, 0, 1)), fname)
+    except URDFError:
+        raise
     except KinlibError as exc:
         raise src.error(str(exc), g) from None
 
@@ -212,6 +227,8 @@ def _joint(el: _El, src: _Source) -> Joint:
     try:
         return Joint(name, kind, parent, child, origin=_origin(el, src), axis=axis,
                      limits=limits, mimic=mimic)
+    except URDFError:
+        raise
     except KinlibError as exc:
         raise src.error(str(exc), el) from None
 
@@ -274,12 +291,12 @@ def load_urdf(path_or_xml, *, poses=None, reference=None):
     links = []
     for el in root.all("link"):
         lname = _name(el, src)
-        src.lines.setdefault(("link", lname), el)
+        src.lines.setdefault(("link", lname), []).append(el)
         links.append(Link(lname, tuple(_visual(v, materials, src) for v in el.all("visual"))))
     joints = []
     for el in root.all("joint"):
         jt = _joint(el, src)
-        src.lines.setdefault(("joint", jt.name), el)
+        src.lines.setdefault(("joint", jt.name), []).append(el)
         joints.append(jt)
     return Robot(name, links, joints, poses=poses, reference=reference, _error=src.tree_error)
 
