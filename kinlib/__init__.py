@@ -26,7 +26,7 @@ from .dual_quaternions import (
 from .errors import KinlibError, URDFError
 from .euler import EULER_SEQUENCES, euler_from_matrix, euler_gimbal_lock, matrix_from_euler
 from .model import Joint, Link, Mimic, Visual
-from .planar import planar_2r_fk
+from .planar import Planar2RIK, planar_2r_fk, planar_2r_ik, planar_2r_jacobian
 from .quaternions import (
     axis_angle_from_quat,
     matrix_from_quat,
@@ -69,6 +69,7 @@ __all__ = [
     "Joint",
     "Link",
     "Mimic",
+    "Planar2RIK",
     "Robot",
     "Visual",
     "KinlibError",
@@ -80,6 +81,8 @@ __all__ = [
     "load_urdf",
     "mdh_transform",
     "planar_2r_fk",
+    "planar_2r_ik",
+    "planar_2r_jacobian",
     "check_rotation",
     "check_transform",
     "dual_quat_conjugate",

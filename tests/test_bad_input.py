@@ -117,6 +117,14 @@ SLOTS = [
     ("planar_2r_fk", "theta2", (), lambda x: kl.planar_2r_fk(0.1, x, 1.0, 0.5)),
     ("planar_2r_fk", "l1", (), lambda x: kl.planar_2r_fk(0.1, 0.2, x, 0.5)),
     ("planar_2r_fk", "l2", (), lambda x: kl.planar_2r_fk(0.1, 0.2, 1.0, x)),
+    ("planar_2r_jacobian", "theta1", (), lambda x: kl.planar_2r_jacobian(x, 0.2, 1.0, 0.5)),
+    ("planar_2r_jacobian", "theta2", (), lambda x: kl.planar_2r_jacobian(0.1, x, 1.0, 0.5)),
+    ("planar_2r_jacobian", "l1", (), lambda x: kl.planar_2r_jacobian(0.1, 0.2, x, 0.5)),
+    ("planar_2r_jacobian", "l2", (), lambda x: kl.planar_2r_jacobian(0.1, 0.2, 1.0, x)),
+    ("planar_2r_ik", "x", (), lambda x: kl.planar_2r_ik(x, 0.2, 1.0, 0.5)),
+    ("planar_2r_ik", "y", (), lambda x: kl.planar_2r_ik(0.1, x, 1.0, 0.5)),
+    ("planar_2r_ik", "l1", (), lambda x: kl.planar_2r_ik(0.1, 0.2, x, 0.5)),
+    ("planar_2r_ik", "l2", (), lambda x: kl.planar_2r_ik(0.1, 0.2, 1.0, x)),
 ]
 # Public callables whose input is not an array: tested in their own modules
 # (load_urdf: tests/test_urdf_errors.py; Robot methods: tests/test_robot.py).
