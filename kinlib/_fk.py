@@ -19,7 +19,7 @@ import numpy as np
 
 from ._accel import numba_disabled
 
-__all__ = ["ChainTable", "FKTable", "run", "run_chain"]
+__all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian"]
 
 _KIND = {"fixed": 0, "revolute": 1, "continuous": 1, "prismatic": 2}
 
@@ -148,6 +148,42 @@ def run_chain(chain: ChainTable, table: FKTable, q: np.ndarray, sel: np.ndarray,
         return fn(q, chain.ints, chain.floats, chain.D)
     frames = run(table, q, sel, compiled=False)
     return frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
+
+
+def _jacobian_numpy(table: FKTable, joints, frames, q_cols: int, sel: np.ndarray):
+    """Reference Jacobian from the tree's frames (N, 1 + n, 4, 4) of the path ``sel``."""
+    N = frames.shape[0]
+    J = np.zeros((N, 6, q_cols))
+    if len(sel) == 0:
+        return J
+    p_end = frames[:, sel[-1] + 1, :3, 3]
+    for j in sel:
+        kind = table.kind[j]
+        if kind == 0:
+            continue
+        jt = joints[j]
+        G = frames[:, j + 1] @ np.linalg.inv(jt.post)  # origin @ motion(q): the joint frame
+        z = G[:, :3, :3] @ jt.axis
+        col, w = table.qidx[j], table.mult[j]
+        if kind == 1:
+            J[:, :3, col] += w * np.cross(z, p_end - G[:, :3, 3])
+            J[:, 3:, col] += w * z
+        else:
+            J[:, :3, col] += w * z
+    return J
+
+
+def run_chain_jacobian(chain: ChainTable, table: FKTable, joints, q: np.ndarray,
+                       sel: np.ndarray, *, compiled: bool | None = None):
+    """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the path ``sel``."""
+    kernels = _compiled() if compiled is not False else None
+    if kernels is not None:
+        fn = (kernels.chain_jacobian_parallel if q.shape[0] >= PARALLEL_MIN
+              else kernels.chain_jacobian)
+        return fn(q, chain.ints, chain.floats, chain.D, q.shape[1])
+    frames = run(table, q, sel, compiled=False)
+    T = frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
+    return T, _jacobian_numpy(table, joints, frames, q.shape[1], sel)
 
 
 def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None = None):

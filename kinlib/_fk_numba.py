@@ -1,8 +1,9 @@
 """The numba kernels of :mod:`kinlib._fk` (private; imported only when numba is wanted).
 
 ``tree`` fills every frame of a tree, ``chain`` computes the last frame of a path (see
-``ChainTable``); ``chain_parallel`` is ``chain`` compiled with its loop over
-configurations spread across the CPU cores. All are cached on disk by numba.
+``ChainTable``) and ``chain_jacobian`` that pose with its geometric Jacobian; the
+``*_parallel`` twins spread the loop over configurations across the CPU cores. All are
+cached on disk by numba.
 """
 
 import types
@@ -10,7 +11,7 @@ import types
 import numba
 import numpy as np
 
-__all__ = ["chain", "chain_parallel", "tree"]
+__all__ = ["chain", "chain_jacobian", "chain_jacobian_parallel", "chain_parallel", "tree"]
 
 
 @numba.njit(cache=True)
@@ -53,37 +54,48 @@ def tree(q, sel, ints, floats, M):  # pragma: no cover - compiled
     return out
 
 
+@numba.njit(cache=True)
+def _walk(q, i, ints, floats, D, T, Z, O):  # pragma: no cover - compiled
+    """T = D_0 Z(q_1) D_1 ... Z(q_m) D_m for configuration i; Z[k], O[k] get joint k's
+    world axis (the z column before its motion) and origin."""
+    for r in range(3):
+        for c in range(4):
+            T[r, c] = D[0, r, c]
+    for k in range(ints.shape[1]):
+        for r in range(3):
+            Z[k, r] = T[r, 2]
+            O[k, r] = T[r, 3]
+        qe = q[i, ints[1, k]] * floats[0, k] + floats[1, k]
+        if ints[0, k] == 1:  # T @ Rz(qe)
+            cq = np.cos(qe)
+            sq = np.sin(qe)
+            for r in range(3):
+                a = T[r, 0]
+                b = T[r, 1]
+                T[r, 0] = cq * a + sq * b
+                T[r, 1] = cq * b - sq * a
+        else:  # T @ Tz(qe)
+            for r in range(3):
+                T[r, 3] += qe * T[r, 2]
+        for r in range(3):  # T @ D[k + 1], D affine (bottom row 0 0 0 1)
+            t0 = T[r, 0]
+            t1 = T[r, 1]
+            t2 = T[r, 2]
+            t3 = T[r, 3]
+            for c in range(4):
+                T[r, c] = t0 * D[k + 1, 0, c] + t1 * D[k + 1, 1, c] + t2 * D[k + 1, 2, c]
+            T[r, 3] += t3
+
+
 def chain(q, ints, floats, D):  # pragma: no cover - compiled
     N = q.shape[0]
     m = ints.shape[1]
     out = np.zeros((N, 4, 4))
     for i in numba.prange(N):
         T = np.empty((3, 4))
-        for r in range(3):
-            for c in range(4):
-                T[r, c] = D[0, r, c]
-        for k in range(m):
-            qe = q[i, ints[1, k]] * floats[0, k] + floats[1, k]
-            if ints[0, k] == 1:  # T @ Rz(qe)
-                cq = np.cos(qe)
-                sq = np.sin(qe)
-                for r in range(3):
-                    a = T[r, 0]
-                    b = T[r, 1]
-                    T[r, 0] = cq * a + sq * b
-                    T[r, 1] = cq * b - sq * a
-            else:  # T @ Tz(qe)
-                for r in range(3):
-                    T[r, 3] += qe * T[r, 2]
-            for r in range(3):  # T @ D[k + 1], D affine (bottom row 0 0 0 1)
-                t0 = T[r, 0]
-                t1 = T[r, 1]
-                t2 = T[r, 2]
-                t3 = T[r, 3]
-                for c in range(4):
-                    T[r, c] = t0 * D[k + 1, 0, c] + t1 * D[k + 1, 1, c] \
-                        + t2 * D[k + 1, 2, c]
-                T[r, 3] += t3
+        Z = np.empty((m, 3))
+        O = np.empty((m, 3))
+        _walk(q, i, ints, floats, D, T, Z, O)
         for r in range(3):
             for c in range(4):
                 out[i, r, c] = T[r, c]
@@ -91,8 +103,51 @@ def chain(q, ints, floats, D):  # pragma: no cover - compiled
     return out
 
 
-# the same function under another name, so numba caches the parallel build separately
-_code = chain.__code__.replace(co_name="chain_par", co_qualname="chain_par")
-chain_parallel = numba.njit(cache=True, parallel=True)(
-    types.FunctionType(_code, chain.__globals__, "chain_par"))
+def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
+    """The chain's end pose and its geometric Jacobian [v; ω] in the base frame:
+    revolute column [z × (p − o); z], prismatic [z; 0], times the joint's multiplier,
+    added into the column of the q that drives it (mimic joints share a column)."""
+    N = q.shape[0]
+    m = ints.shape[1]
+    out = np.zeros((N, 4, 4))
+    J = np.zeros((N, 6, dof))
+    for i in numba.prange(N):
+        T = np.empty((3, 4))
+        Z = np.empty((m, 3))
+        O = np.empty((m, 3))
+        _walk(q, i, ints, floats, D, T, Z, O)
+        for r in range(3):
+            for c in range(4):
+                out[i, r, c] = T[r, c]
+        out[i, 3, 3] = 1.0
+        for k in range(m):
+            col = ints[1, k]
+            w = floats[0, k]
+            z0, z1, z2 = Z[k, 0], Z[k, 1], Z[k, 2]
+            if ints[0, k] == 1:
+                d0 = T[0, 3] - O[k, 0]
+                d1 = T[1, 3] - O[k, 1]
+                d2 = T[2, 3] - O[k, 2]
+                J[i, 0, col] += w * (z1 * d2 - z2 * d1)
+                J[i, 1, col] += w * (z2 * d0 - z0 * d2)
+                J[i, 2, col] += w * (z0 * d1 - z1 * d0)
+                J[i, 3, col] += w * z0
+                J[i, 4, col] += w * z1
+                J[i, 5, col] += w * z2
+            else:
+                J[i, 0, col] += w * z0
+                J[i, 1, col] += w * z1
+                J[i, 2, col] += w * z2
+    return out, J
+
+
+def _parallel(fn, name):
+    """``fn`` compiled with its prange loop spread over the cores, cached under ``name``."""
+    code = fn.__code__.replace(co_name=name, co_qualname=name)
+    return numba.njit(cache=True, parallel=True)(types.FunctionType(code, fn.__globals__, name))
+
+
+chain_parallel = _parallel(chain, "chain_par")
+chain_jacobian_parallel = _parallel(chain_jacobian, "chain_jacobian_par")
 chain = numba.njit(cache=True)(chain)
+chain_jacobian = numba.njit(cache=True)(chain_jacobian)

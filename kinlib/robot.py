@@ -252,6 +252,15 @@ class Robot:
             self._chains[link] = chain
         return chain
 
+    def _link_or_tip(self, link) -> str:
+        if link is None:
+            if self.tip is None:
+                raise KinlibError(f"robot {self.name!r} branches (it has several leaf links); "
+                                  "pass link= to say which one")
+            link = self.tip
+        self._frame_of(link)
+        return link
+
     def _frame_of(self, link) -> int:
         if link not in self._frame:
             raise KinlibError(f"robot {self.name!r} has no link {link!r}; links: "
@@ -264,17 +273,48 @@ class Robot:
         ``q`` has shape ``(..., dof)`` (or is a dict joint name → value, missing joints 0).
         With ``check_limits=True`` a value outside a joint's limits raises.
         """
-        if link is None:
-            if self.tip is None:
-                raise KinlibError(f"robot {self.name!r} branches (it has several leaf links); "
-                                  "pass link= to say which one")
-            link = self.tip
-        self._frame_of(link)
+        link = self._link_or_tip(link)
         a = self.check_limits(q) if check_limits else self._check_q(q)
         batch = a.shape[:-1]
         T = _fk.run_chain(self._chain(link), self._table,
                           a.reshape(int(np.prod(batch)), self.dof), self._path[link])
         return T.reshape(batch + (4, 4))
+
+    def fk_and_jacobian(self, q, link=None) -> tuple[np.ndarray, np.ndarray]:
+        """``(fk(q, link), jacobian(q, link))`` in one pass (what IK needs each step)."""
+        link = self._link_or_tip(link)
+        a = self._check_q(q)
+        batch = a.shape[:-1]
+        T, J = _fk.run_chain_jacobian(self._chain(link), self._table, self._order,
+                                      a.reshape(int(np.prod(batch)), self.dof),
+                                      self._path[link])
+        return T.reshape(batch + (4, 4)), J.reshape(batch + (6, self.dof))
+
+    def jacobian(self, q, link=None, *, frame=None) -> np.ndarray:
+        r"""The geometric Jacobian of ``link`` (default: the tip): ``(..., 6, dof)``.
+
+        Rows ``[v; ω]``: the linear velocity of the link's origin and the link's angular
+        velocity, ``[v; ω] = J(q) q̇``. Column i, for a joint with world axis z and origin
+        o on the path to the link (p: the link's origin) is ``[z × (p − o); z]``
+        (revolute) or ``[z; 0]`` (prismatic); joints not on the path give zero columns.
+        The vectors are expressed in the base (root) frame, or in the frame of the link
+        named by ``frame`` (the reference point stays the link's origin).
+
+        >>> from kinlib.robots import planar_2r
+        >>> planar_2r(1.0, 1.0).jacobian([0.0, np.pi / 2]).round(12) + 0.0
+        array([[-1., -1.],
+               [ 1.,  0.],
+               [ 0.,  0.],
+               [ 0.,  0.],
+               [ 0.,  0.],
+               [ 1.,  1.]])
+        """
+        J = self.fk_and_jacobian(q, link)[1]
+        if frame is None:
+            return J
+        R = self.fk(q, link=frame)[..., :3, :3]
+        Rt = np.swapaxes(R, -1, -2)
+        return np.concatenate([Rt @ J[..., :3, :], Rt @ J[..., 3:, :]], axis=-2)
 
     def link_poses(self, q, *, check_limits: bool = False) -> dict[str, np.ndarray]:
         """Pose of every link in the root frame: dict link name → ``(..., 4, 4)``."""
