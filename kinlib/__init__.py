@@ -25,6 +25,7 @@ from .dual_quaternions import (
 )
 from .errors import KinlibError, URDFError
 from .euler import EULER_SEQUENCES, euler_from_matrix, euler_gimbal_lock, matrix_from_euler
+from .ik import IKResult
 from .model import Joint, Link, Mimic, Visual
 from .planar import Planar2RIK, planar_2r_fk, planar_2r_ik, planar_2r_jacobian
 from .quaternions import (
@@ -65,6 +66,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "DHRow",
+    "IKResult",
     "EULER_SEQUENCES",
     "Joint",
     "Link",

@@ -87,6 +87,29 @@ def _walk(q, i, ints, floats, D, T, Z, O):  # pragma: no cover - compiled
             T[r, 3] += t3
 
 
+@numba.njit(cache=True)
+def _columns(T, Z, O, ints, floats, J):  # pragma: no cover - compiled
+    """Add each moving joint's column (times its multiplier) into J (6, dof)."""
+    for k in range(ints.shape[1]):
+        col = ints[1, k]
+        w = floats[0, k]
+        z0, z1, z2 = Z[k, 0], Z[k, 1], Z[k, 2]
+        if ints[0, k] == 1:
+            d0 = T[0, 3] - O[k, 0]
+            d1 = T[1, 3] - O[k, 1]
+            d2 = T[2, 3] - O[k, 2]
+            J[0, col] += w * (z1 * d2 - z2 * d1)
+            J[1, col] += w * (z2 * d0 - z0 * d2)
+            J[2, col] += w * (z0 * d1 - z1 * d0)
+            J[3, col] += w * z0
+            J[4, col] += w * z1
+            J[5, col] += w * z2
+        else:
+            J[0, col] += w * z0
+            J[1, col] += w * z1
+            J[2, col] += w * z2
+
+
 def chain(q, ints, floats, D):  # pragma: no cover - compiled
     N = q.shape[0]
     m = ints.shape[1]
@@ -120,24 +143,7 @@ def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
             for c in range(4):
                 out[i, r, c] = T[r, c]
         out[i, 3, 3] = 1.0
-        for k in range(m):
-            col = ints[1, k]
-            w = floats[0, k]
-            z0, z1, z2 = Z[k, 0], Z[k, 1], Z[k, 2]
-            if ints[0, k] == 1:
-                d0 = T[0, 3] - O[k, 0]
-                d1 = T[1, 3] - O[k, 1]
-                d2 = T[2, 3] - O[k, 2]
-                J[i, 0, col] += w * (z1 * d2 - z2 * d1)
-                J[i, 1, col] += w * (z2 * d0 - z0 * d2)
-                J[i, 2, col] += w * (z0 * d1 - z1 * d0)
-                J[i, 3, col] += w * z0
-                J[i, 4, col] += w * z1
-                J[i, 5, col] += w * z2
-            else:
-                J[i, 0, col] += w * z0
-                J[i, 1, col] += w * z1
-                J[i, 2, col] += w * z2
+        _columns(T, Z, O, ints, floats, J[i])
     return out, J
 
 

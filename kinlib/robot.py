@@ -316,6 +316,32 @@ class Robot:
         Rt = np.swapaxes(R, -1, -2)
         return np.concatenate([Rt @ J[..., :3, :], Rt @ J[..., 3:, :]], axis=-2)
 
+    def ik(self, T_target, q0=None, *, link=None, position_only=False, tol_position=1e-6,
+           tol_rotation=1e-6, max_iterations=30, restarts=100, seed=0):
+        """Joint values that put ``link`` (default: the tip) at ``T_target``.
+
+        Damped least squares with Levenberg–Marquardt damping on the full pose (or the
+        position only), within the joint limits, restarting from seeded random
+        configurations when an attempt stalls; see :mod:`kinlib.ik`. ``T_target`` is
+        ``(..., 4, 4)`` (or points ``(..., 3)`` with ``position_only=True``); all targets
+        are solved together. Tolerances are in metres and radians. Returns
+        :class:`~kinlib.IKResult`; an unreachable target ends with ``success=False``.
+
+        >>> from kinlib.robots import puma560
+        >>> robot = puma560()
+        >>> target = robot.fk([0.3, -0.6, 1.2, 0.2, 0.5, -0.4])
+        >>> sol = robot.ik(target)
+        >>> sol.success, sol.position_error < 1e-6, sol.rotation_error < 1e-6
+        (True, True, True)
+        >>> bool(np.allclose(robot.fk(sol.q), target, atol=1e-6))
+        True
+        """
+        from .ik import solve_ik
+
+        return solve_ik(self, T_target, q0, link=link, position_only=position_only,
+                        tol_position=tol_position, tol_rotation=tol_rotation,
+                        max_iterations=max_iterations, restarts=restarts, seed=seed)
+
     def link_poses(self, q, *, check_limits: bool = False) -> dict[str, np.ndarray]:
         """Pose of every link in the root frame: dict link name → ``(..., 4, 4)``."""
         a = self.check_limits(q) if check_limits else self._check_q(q)

@@ -1,0 +1,126 @@
+"""Numeric IK: FK(ik(T)) == T whenever success is reported, for every robot; success rate on
+reachable targets; unreachable targets are never reported as success and end in bounded
+time; the compiled loop and the numpy reference agree."""
+
+import numpy as np
+import pytest
+
+from kinlib import IKResult, KinlibError, ik
+from kinlib.robots import autorob_test_robot, panda, planar_2r, puma560, three_dof_arm, ur5
+
+MODELS = [planar_2r, three_dof_arm, puma560, ur5, panda]
+
+
+def reachable_targets(robot, n, seed, link=None):
+    lim = np.clip(robot.limits, -np.pi, np.pi)
+    q = np.random.default_rng(seed).uniform(lim[:, 0], lim[:, 1], (n, robot.dof))
+    return robot.fk(q, link=link)
+
+
+def rotation_angle(Ra, Rb):
+    c = (np.trace(np.swapaxes(Ra, -1, -2) @ Rb, axis1=-2, axis2=-1) - 1) / 2
+    return np.arccos(np.clip(c, -1, 1))
+
+
+def check_solutions(robot, T, sol, tol=1e-6, link=None):
+    """Independent check of what success claims: pose error from FK, limits."""
+    reached = robot.fk(sol.q, link=link)
+    pos = np.linalg.norm(reached[..., :3, 3] - T[..., :3, 3], axis=-1)
+    rot = rotation_angle(reached[..., :3, :3], T[..., :3, :3])
+    ok = np.asarray(sol.success)
+    assert (pos[ok] < tol).all() and (rot[ok] < tol * 1.01).all()
+    lim = robot.limits
+    assert ((sol.q >= lim[:, 0] - 1e-12) & (sol.q <= lim[:, 1] + 1e-12)).all()
+    np.testing.assert_allclose(sol.position_error, pos, atol=1e-12)
+
+
+@pytest.mark.parametrize("model", MODELS, ids=lambda m: m.__name__)
+def test_reachable_targets(model):
+    robot = model()
+    T = reachable_targets(robot, 200, seed=11)
+    sol = robot.ik(T)
+    assert isinstance(sol, IKResult) and sol.q.shape == (200, robot.dof)
+    check_solutions(robot, T, sol)
+    assert np.mean(sol.success) >= 0.99
+    assert (sol.iterations <= 101 * 30).all()
+
+
+@pytest.mark.parametrize("model", [puma560, panda], ids=lambda m: m.__name__)
+def test_numpy_reference_agrees_with_the_compiled_loop(model):
+    robot = model()
+    T = reachable_targets(robot, 40, seed=12)
+    fast = robot.ik(T)
+    ref = ik.solve_ik(robot, T, compiled=False)
+    check_solutions(robot, T, ref)
+    assert np.mean(ref.success) >= 0.95
+    # same starts, same method: the same targets succeed (rounding may rarely differ)
+    assert np.mean(fast.success == ref.success) >= 0.95
+
+
+def test_unreachable_target_is_never_success():
+    robot = puma560()
+    T = np.eye(4)
+    T[:3, 3] = [2.0, 0.0, 0.5]  # reach is under 1 m
+    sol = robot.ik(T, restarts=3, max_iterations=20)
+    assert sol.success is False
+    assert sol.iterations == 4 * 20
+    assert sol.position_error > 1.0
+    check_solutions(robot, T, sol)
+
+
+def test_orientation_the_planar_arm_cannot_reach():
+    robot = planar_2r(1.0, 1.0)
+    T = robot.fk([0.3, 0.5])
+    T[:3, :3] = T[:3, :3] @ np.array([[1, 0, 0], [0, 0, -1], [0, 1, 0]])  # tilt out of plane
+    sol = robot.ik(T, restarts=5)
+    assert sol.success is False and sol.rotation_error > 1.0
+    # the position alone is reachable
+    pos = robot.ik(T, position_only=True)
+    assert pos.success and pos.position_error < 1e-6
+
+
+def test_position_only_with_points_and_a_branch():
+    robot = autorob_test_robot()
+    targets = robot.fk(np.random.default_rng(3).uniform(-3, 3, (30, 3)), link="link4")
+    sol = robot.ik(targets[:, :3, 3], position_only=True, link="link4")
+    reached = robot.fk(sol.q, link="link4")[:, :3, 3]
+    assert np.mean(sol.success) >= 0.99
+    assert (np.linalg.norm(reached - targets[:, :3, 3], axis=1)[sol.success] < 1e-6).all()
+    with pytest.raises(KinlibError, match="several leaf links"):
+        robot.ik(targets[0])
+
+
+def test_starting_at_the_answer_takes_one_step():
+    robot = ur5()
+    q = np.array([0.3, -1.0, 1.2, -0.4, 0.8, 0.1])
+    sol = robot.ik(robot.fk(q), q0=q)
+    assert sol.success and sol.iterations == 1
+    np.testing.assert_allclose(sol.q, q, atol=1e-12)
+
+
+def test_batches_and_seeds():
+    robot = puma560()
+    T = reachable_targets(robot, 6, seed=13).reshape(2, 3, 4, 4)
+    a = robot.ik(T, seed=5)
+    assert a.q.shape == (2, 3, 6) and a.success.shape == (2, 3)
+    b = robot.ik(T, seed=5)
+    np.testing.assert_array_equal(a.q, b.q)
+    single = robot.ik(T[1, 2], seed=5)
+    assert isinstance(single.success, bool) and isinstance(single.iterations, int)
+
+
+@pytest.mark.parametrize("kwargs, phrase", [
+    ({"T_target": np.zeros((4, 4))}, "T_target"),
+    ({"T_target": np.eye(3)}, "T_target"),
+    ({"max_iterations": 0}, "max_iterations"),
+    ({"restarts": -1}, "restarts"),
+    ({"restarts": 2.5}, "restarts"),
+    ({"tol_position": -1.0}, "tol_position"),
+    ({"q0": [0.0] * 5}, "q0"),
+    ({"q0": np.zeros((3, 6))}, "q0"),
+])
+def test_bad_input(kwargs, phrase):
+    robot = puma560()
+    args = {"T_target": robot.fk(np.zeros(6))} | kwargs
+    with pytest.raises(KinlibError, match=phrase):
+        robot.ik(**args)
