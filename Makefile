@@ -33,6 +33,7 @@ bench: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e '.[bench]'
 	$(BIN)/python bench/bench_conversions.py
 	$(BIN)/python bench/bench_fk.py
+	$(BIN)/python bench/bench_diffkin.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info
