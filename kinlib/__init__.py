@@ -5,6 +5,7 @@ Conventions (frames, quaternion order, Euler sequences, ...) are stated once in
 :mod:`kinlib.conventions`.
 """
 
+from .astar import PlanResult, astar, cost_to_go
 from .axis_angle import (
     axis_angle_from_matrix,
     exp_so3,
@@ -13,6 +14,7 @@ from .axis_angle import (
     rodrigues_rotate,
 )
 from .cayley import cayley_from_matrix, matrix_from_cayley
+from .cspace import Circle, CSpaceGrid, Polygon, planar_2r_cspace, planar_2r_metric
 from .dh import DHRow, dh_transform, mdh_transform
 from .dual_quaternions import (
     dual_quat_conjugate,
@@ -65,6 +67,8 @@ from .urdf import load_urdf
 __version__ = "0.1.0"
 
 __all__ = [
+    "CSpaceGrid",
+    "Circle",
     "DHRow",
     "IKResult",
     "EULER_SEQUENCES",
@@ -72,6 +76,8 @@ __all__ = [
     "Link",
     "Mimic",
     "Planar2RIK",
+    "PlanResult",
+    "Polygon",
     "Robot",
     "Visual",
     "KinlibError",
@@ -82,9 +88,13 @@ __all__ = [
     "dh_transform",
     "load_urdf",
     "mdh_transform",
+    "planar_2r_cspace",
     "planar_2r_fk",
     "planar_2r_ik",
     "planar_2r_jacobian",
+    "planar_2r_metric",
+    "astar",
+    "cost_to_go",
     "check_rotation",
     "check_transform",
     "dual_quat_conjugate",

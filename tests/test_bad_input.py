@@ -26,7 +26,8 @@ T_OK[:3, :3], T_OK[:3, 3] = R_OK, V_OK
 DQ_OK = np.array([1.0, 0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.5])  # pure translation by (1, 2, 3)
 L_OK, M_OK = np.array([0.0, 0.0, 1.0]), np.array([0.0, -1.0, 0.0])
 
-GOOD = {(3, 3): R_OK, (4,): Q_OK, (3,): V_OK, (4, 4): T_OK, (8,): DQ_OK, (): 0.5}
+GOOD = {(3, 3): R_OK, (4,): Q_OK, (3,): V_OK, (4, 4): T_OK, (8,): DQ_OK, (): 0.5,
+        (2,): np.array([0.1, 0.2])}
 S_OK = np.array([[0.0, -3.0, 2.0], [3.0, 0.0, -1.0], [-2.0, 1.0, 0.0]])  # skew([1, 2, 3])
 
 
@@ -125,10 +126,15 @@ SLOTS = [
     ("planar_2r_ik", "y", (), lambda x: kl.planar_2r_ik(0.1, x, 1.0, 0.5)),
     ("planar_2r_ik", "l1", (), lambda x: kl.planar_2r_ik(0.1, 0.2, x, 0.5)),
     ("planar_2r_ik", "l2", (), lambda x: kl.planar_2r_ik(0.1, 0.2, 1.0, x)),
+    ("planar_2r_metric", "theta", (2,), lambda x: kl.planar_2r_metric(x, [0.3, -0.4], 1.0, 0.5)),
+    ("planar_2r_metric", "dtheta", (2,), lambda x: kl.planar_2r_metric([0.1, 0.2], x, 1.0, 0.5)),
+    ("planar_2r_metric", "l1", (), lambda x: kl.planar_2r_metric([0.1, 0.2], [0.3, -0.4], x, 0.5)),
+    ("planar_2r_metric", "l2", (), lambda x: kl.planar_2r_metric([0.1, 0.2], [0.3, -0.4], 1.0, x)),
 ]
 # Public callables whose input is not an array: tested in their own modules
 # (load_urdf: tests/test_urdf_errors.py; Robot methods: tests/test_robot.py).
-NOT_ARRAY_FUNCTIONS = {"load_urdf"}
+# (planar_2r_cspace, astar, cost_to_go: tests/test_planning.py).
+NOT_ARRAY_FUNCTIONS = {"load_urdf", "planar_2r_cspace", "astar", "cost_to_go"}
 
 # None means "the default" here
 NONE_OK = {("transform", "R"), ("transform", "p")}
@@ -143,6 +149,7 @@ BAD_SHAPES = {
     (4,): [(3,), (5,), (2, 3), (4, 2), ()],
     (3,): [(2,), (4,), (3, 2), (2, 2, 2), ()],
     (8,): [(7,), (4,), (8, 2), ()],
+    (2,): [(3,), (1,), (2, 3), ()],
 }
 
 
