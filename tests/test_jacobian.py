@@ -50,11 +50,12 @@ def tree_robot():
     return Robot("tree", links, joints)
 
 
-MODELS = [planar_2r, three_dof_arm, puma560, ur5, panda, tree_robot]
+MODELS = [planar_2r, three_dof_arm, puma560, ur5, panda, autorob_test_robot, tree_robot]
 
 
 def tips(robot):
-    return [robot.tip] if robot.tip else ["c", "d", "e", "f"]
+    """The tip, or for a branched tree every link that is not the root."""
+    return [robot.tip] if robot.tip else [n for n in robot.link_names if n != robot.root]
 
 
 def sample(robot, n, seed):
