@@ -30,7 +30,7 @@ def _tree(links, joints, err):
     seen = set()
     for lk in links:
         if lk.name in seen:
-            raise err(f"duplicate link name {lk.name!r}", ("link", lk.name), -1)
+            raise err(f"duplicate link name {lk.name!r}", ("link", lk.name), 1)
         seen.add(lk.name)
     jseen, parent_joint, children = set(), {}, {n: [] for n in link_names}
     for jt in joints:
@@ -55,8 +55,15 @@ def _tree(links, joints, err):
     if len(roots) > 1:
         raise err(f"several root links (links with no parent joint): {roots}; a robot is one "
                   "tree with a single root", ("link", roots[1]))
-    if not roots:
-        raise err("no root link: the joints form a cycle", ("joint", joints[0].name))
+    if not roots:  # every link has a parent: follow parents until one repeats
+        seen_at, walk, name = {}, [], link_names[0]
+        while name not in seen_at:
+            seen_at[name] = len(walk)
+            walk.append(parent_joint[name])
+            name = parent_joint[name].parent
+        loop = walk[seen_at[name]:][::-1]
+        raise err("no root link: joints " + " -> ".join(repr(j.name) for j in loop)
+                  + " form a cycle", ("joint", loop[0].name))
     # depth first, children in document order: the matrix-stack traversal (an explicit
     # stack of iterators, so a long chain does not hit the recursion limit)
     order = []
@@ -77,27 +84,38 @@ def _tree(links, joints, err):
 
 
 def _mimic_sources(joints, err):
-    """For each movable joint: (name of the joint whose q drives it, multiplier, offset)."""
+    """For each movable joint: (name of the joint whose q drives it, multiplier, offset).
+
+    Each mimic chain is walked once (results are memoised), so this is linear in the
+    number of joints.
+    """
     by_name = {jt.name: jt for jt in joints}
     out = {}
     for jt in joints:
-        if not jt.movable:
+        if not jt.movable or jt.name in out:
             continue
-        mult, off, cur, visited = 1.0, 0.0, jt, [jt.name]
-        while cur.mimic is not None:
+        chain, on_chain, cur = [], set(), jt
+        while cur.mimic is not None and cur.name not in out:
+            chain.append(cur)
+            on_chain.add(cur.name)
             m = cur.mimic
             src = by_name.get(m.joint)
             if src is None or not src.movable:
                 what = "does not exist" if src is None else "is fixed"
                 raise err(f"joint {cur.name!r} mimics {m.joint!r}, which {what}",
                           ("joint", cur.name))
-            mult, off = mult * m.multiplier, mult * m.offset + off
-            if src.name in visited:
-                raise err(f"mimic joints form a cycle: {' -> '.join(visited + [src.name])}",
-                          ("joint", jt.name))
-            visited.append(src.name)
+            if src.name in on_chain:
+                names = [c.name for c in chain]
+                loop = names[names.index(src.name):] + [src.name]
+                raise err(f"mimic joints form a cycle: {' -> '.join(loop)}",
+                          ("joint", src.name))
             cur = src
-        out[jt.name] = (cur.name, mult, off)
+        root, mult, off = out.get(cur.name, (cur.name, 1.0, 0.0))
+        for c in reversed(chain):  # q_c = m * q_src + o, q_src = mult * q_root + off
+            m = c.mimic
+            mult, off = m.multiplier * mult, m.multiplier * off + m.offset
+            out[c.name] = (root, mult, off)
+        out.setdefault(cur.name, (cur.name, 1.0, 0.0))  # cur drives itself (no mimic)
     return out
 
 
@@ -151,13 +169,11 @@ class Robot:
         for j, jt in enumerate(self._order):
             self._frame[jt.child] = j + 1
         self._table = _fk.FKTable(self._order, self._frame, q_index, sources)
-        # joints on the path root -> link, in traversal order, for fk(link=...)
-        self._path = {self.root: np.zeros(0, dtype=np.int64)}
-        for j, jt in enumerate(self._order):
-            self._path[jt.child] = np.append(self._path[jt.parent], j)
+        self._parent_index = {jt.child: j for j, jt in enumerate(self._order)}
         self._all = np.arange(len(self._order), dtype=np.int64)
         self._chains = {}  # link -> _fk.ChainTable, filled on first fk(link=...)
-        leaves = [lk.name for lk in links if not any(jt.parent == lk.name for jt in joints)]
+        parents = {jt.parent for jt in joints}
+        leaves = [lk.name for lk in links if lk.name not in parents]
         self.tip = leaves[0] if len(leaves) == 1 else None
         self.poses = {}
         for key, q in (poses or {}).items():
@@ -243,11 +259,20 @@ class Robot:
             )
         return a
 
+    def _path(self, link) -> np.ndarray:
+        """Indices (traversal order) of the joints from the root to ``link``."""
+        path = []
+        while link in self._parent_index:
+            j = self._parent_index[link]
+            path.append(j)
+            link = self._order[j].parent
+        return np.array(path[::-1], dtype=np.int64)
+
     def _chain(self, link) -> _fk.ChainTable:
         """The path root → link prepared for the chain kernel (built once per link)."""
         chain = self._chains.get(link)
         if chain is None:
-            path = self._path[link]
+            path = self._path(link)
             chain = _fk.ChainTable(self._table, [self._order[j] for j in path], path)
             self._chains[link] = chain
         return chain
@@ -277,7 +302,7 @@ class Robot:
         a = self.check_limits(q) if check_limits else self._check_q(q)
         batch = a.shape[:-1]
         T = _fk.run_chain(self._chain(link), self._table,
-                          a.reshape(int(np.prod(batch)), self.dof), self._path[link])
+                          a.reshape(int(np.prod(batch)), self.dof), self._path(link))
         return T.reshape(batch + (4, 4))
 
     def fk_and_jacobian(self, q, link=None) -> tuple[np.ndarray, np.ndarray]:
@@ -287,7 +312,7 @@ class Robot:
         batch = a.shape[:-1]
         T, J = _fk.run_chain_jacobian(self._chain(link), self._table, self._order,
                                       a.reshape(int(np.prod(batch)), self.dof),
-                                      self._path[link])
+                                      self._path(link))
         return T.reshape(batch + (4, 4)), J.reshape(batch + (6, self.dof))
 
     def jacobian(self, q, link=None, *, frame=None) -> np.ndarray:

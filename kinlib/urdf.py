@@ -107,6 +107,8 @@ def _parse_xml(data: bytes, src: _Source) -> _El:
     except expat.ExpatError as exc:
         raise src.error(f"line {exc.lineno}: XML syntax error: {expat.errors.messages[exc.code]}"
                         f" (column {exc.offset + 1})") from None
+    except LookupError as exc:  # <?xml encoding="..."?> that Python does not know
+        raise src.error(f"line {parser.CurrentLineNumber}: {exc}") from None
     return top[0]
 
 
@@ -236,19 +238,29 @@ def _joint(el: _El, src: _Source) -> Joint:
 def _read(path_or_xml) -> tuple[bytes, str]:
     if isinstance(path_or_xml, bytes):
         data, label = path_or_xml, "<urdf bytes>"
-    elif isinstance(path_or_xml, str) and path_or_xml.lstrip().startswith("<"):
-        data, label = path_or_xml.encode("utf-8"), "<urdf string>"
+    elif isinstance(path_or_xml, str) and path_or_xml.lstrip("\ufeff \t\r\n").startswith("<"):
+        label = "<urdf string>"
+        try:
+            data = path_or_xml.encode("utf-8")
+        except UnicodeEncodeError as exc:
+            raise URDFError(f"{label}: not valid Unicode text ({exc.reason} at character "
+                            f"{exc.start})") from None
+    elif isinstance(path_or_xml, str) and not path_or_xml.strip():
+        raise URDFError("load_urdf: got an empty string; expected a file path or URDF text")
     elif isinstance(path_or_xml, str | os.PathLike):
         label = os.fspath(path_or_xml)
         try:
             size = os.path.getsize(label)
-            if size > MAX_BYTES:
-                raise URDFError(f"{label}: {size} bytes is larger than any robot description "
-                                f"(limit {MAX_BYTES} bytes)")
-            with open(label, "rb") as fh:
-                data = fh.read(MAX_BYTES + 1)
+            if size <= MAX_BYTES:
+                with open(label, "rb") as fh:
+                    data = fh.read(MAX_BYTES + 1)
         except OSError as exc:
             raise URDFError(f"{label}: cannot read the file: {exc.strerror}") from None
+        except ValueError as exc:  # e.g. a NUL byte in the path
+            raise URDFError(f"{label!r}: cannot read the file: {exc}") from None
+        if size > MAX_BYTES:
+            raise URDFError(f"{label}: {size} bytes is larger than any robot description "
+                            f"(limit {MAX_BYTES} bytes)")
     else:
         raise URDFError(f"load_urdf: expected a file path or URDF text, got "
                         f"{type(path_or_xml).__name__}")

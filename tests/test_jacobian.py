@@ -143,7 +143,7 @@ def test_compiled_and_numpy_paths_and_batches_agree(model):
     link = tips(robot)[-1]
     Q = sample(robot, _fk.PARALLEL_MIN + 5, 6)  # the parallel kernel too
     T, J = robot.fk_and_jacobian(Q, link)
-    path = robot._path[link]
+    path = robot._path(link)
     T0, J0 = _fk.run_chain_jacobian(robot._chain(link), robot._table, robot._order, Q, path,
                                     compiled=False)
     np.testing.assert_allclose(J, J0, atol=1e-12)
