@@ -55,6 +55,13 @@ from .rotations import (
     skew,
     vee,
 )
+from .singularity import (
+    condition_number,
+    is_near_singular,
+    manipulability,
+    singular_values,
+    velocity_ellipsoid,
+)
 from .transforms import (
     check_transform,
     transform,
@@ -63,10 +70,29 @@ from .transforms import (
     transform_vectors,
 )
 from .urdf import load_urdf
+from .velocity import (
+    add_angular_velocities,
+    angular_velocity,
+    euler_rate_matrix,
+    euler_rates_singular,
+    point_velocity,
+    rotation_derivative,
+)
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "add_angular_velocities",
+    "angular_velocity",
+    "condition_number",
+    "euler_rate_matrix",
+    "euler_rates_singular",
+    "is_near_singular",
+    "manipulability",
+    "point_velocity",
+    "rotation_derivative",
+    "singular_values",
+    "velocity_ellipsoid",
     "CSpaceGrid",
     "Circle",
     "DHRow",

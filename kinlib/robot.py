@@ -341,6 +341,13 @@ class Robot:
         Rt = np.swapaxes(R, -1, -2)
         return np.concatenate([Rt @ J[..., :3, :], Rt @ J[..., 3:, :]], axis=-2)
 
+    def analytic_jacobian(self, q, seq: str = "ZYX", link=None) -> np.ndarray:
+        """``[ṗ; φ̇] = J_a q̇`` for Euler/fixed angles ``seq``; see
+        :func:`kinlib.velocity.analytic_jacobian` (raises at the angles' gimbal lock)."""
+        from .velocity import analytic_jacobian
+
+        return analytic_jacobian(self, q, seq, link)
+
     def ik(self, T_target, q0=None, *, link=None, position_only=False, tol_position=1e-6,
            tol_rotation=1e-6, max_iterations=30, restarts=100, seed=0):
         """Joint values that put ``link`` (default: the tip) at ``T_target``.

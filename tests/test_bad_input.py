@@ -32,7 +32,8 @@ S_OK = np.array([[0.0, -3.0, 2.0], [3.0, 0.0, -1.0], [-2.0, 1.0, 0.0]])  # skew(
 
 
 SPECIAL_GOOD = {("vee", "S"): S_OK, ("dual_quat_from_screw", "l"): L_OK,
-                ("dual_quat_from_screw", "m"): M_OK}
+                ("dual_quat_from_screw", "m"): M_OK,
+                ("angular_velocity", "R_dot"): S_OK @ R_OK}  # Ṙ = S(ω) R
 
 
 def good_for(slot):
@@ -130,11 +131,25 @@ SLOTS = [
     ("planar_2r_metric", "dtheta", (2,), lambda x: kl.planar_2r_metric([0.1, 0.2], x, 1.0, 0.5)),
     ("planar_2r_metric", "l1", (), lambda x: kl.planar_2r_metric([0.1, 0.2], [0.3, -0.4], x, 0.5)),
     ("planar_2r_metric", "l2", (), lambda x: kl.planar_2r_metric([0.1, 0.2], [0.3, -0.4], 1.0, x)),
+    ("angular_velocity", "R", (3, 3), lambda x: kl.angular_velocity(x, S_OK @ R_OK)),
+    ("angular_velocity", "R_dot", (3, 3), lambda x: kl.angular_velocity(R_OK, x)),
+    ("rotation_derivative", "R", (3, 3), lambda x: kl.rotation_derivative(x, V_OK)),
+    ("rotation_derivative", "omega", (3,), lambda x: kl.rotation_derivative(R_OK, x)),
+    ("point_velocity", "R", (3, 3), lambda x: kl.point_velocity(x, V_OK, V_OK, V_OK)),
+    ("point_velocity", "p_dot", (3,), lambda x: kl.point_velocity(R_OK, x, V_OK, V_OK)),
+    ("point_velocity", "omega", (3,), lambda x: kl.point_velocity(R_OK, V_OK, x, V_OK)),
+    ("point_velocity", "p_local", (3,), lambda x: kl.point_velocity(R_OK, V_OK, V_OK, x)),
+    ("euler_rate_matrix", "angles", (3,), lambda x: kl.euler_rate_matrix(x, "ZYX")),
+    ("euler_rates_singular", "angles", (3,), lambda x: kl.euler_rates_singular(x, "ZYX")),
 ]
 # Public callables whose input is not an array: tested in their own modules
 # (load_urdf: tests/test_urdf_errors.py; Robot methods: tests/test_robot.py).
 # (planar_2r_cspace, astar, cost_to_go: tests/test_planning.py).
-NOT_ARRAY_FUNCTIONS = {"load_urdf", "planar_2r_cspace", "astar", "cost_to_go"}
+# add_angular_velocities takes stacks (..., n, 3, 3) and the singularity tools any (..., m, n)
+# matrix: their bad input is tested in tests/test_velocity.py and tests/test_singularity.py.
+NOT_ARRAY_FUNCTIONS = {"load_urdf", "add_angular_velocities", "singular_values",
+                       "manipulability", "condition_number", "velocity_ellipsoid",
+                       "is_near_singular", "planar_2r_cspace", "astar", "cost_to_go"}
 
 # None means "the default" here
 NONE_OK = {("transform", "R"), ("transform", "p")}
