@@ -30,6 +30,14 @@ def _lengths(l1, l2):
     return a1, a2
 
 
+def _trig(theta1, theta2, l1, l2):
+    """Checked inputs and ``l1, l2, c1, s1, c12, s12, batch shape`` (seed 001's notation)."""
+    t1, t2 = as_array(theta1, "theta1"), as_array(theta2, "theta2")
+    a1, a2 = _lengths(l1, l2)
+    batch = broadcast((t1, 0, "theta1"), (t2, 0, "theta2"), (a1, 0, "l1"), (a2, 0, "l2"))
+    return a1, a2, np.cos(t1), np.sin(t1), np.cos(t1 + t2), np.sin(t1 + t2), batch
+
+
 def planar_2r_fk(theta1, theta2, l1, l2) -> np.ndarray:
     """Pose ``⁰A₂`` of the planar 2R arm's end (eq. 5.4), batched: ``(..., 4, 4)``.
 
@@ -39,11 +47,7 @@ def planar_2r_fk(theta1, theta2, l1, l2) -> np.ndarray:
     >>> planar_2r_fk(0.0, np.pi / 2, 1.0, 0.5)[:2, 3].round(12)
     array([1. , 0.5])
     """
-    t1, t2 = as_array(theta1, "theta1"), as_array(theta2, "theta2")
-    a1, a2 = _lengths(l1, l2)
-    batch = broadcast((t1, 0, "theta1"), (t2, 0, "theta2"), (a1, 0, "l1"), (a2, 0, "l2"))
-    c1, s1 = np.cos(t1), np.sin(t1)
-    c12, s12 = np.cos(t1 + t2), np.sin(t1 + t2)
+    a1, a2, c1, s1, c12, s12, batch = _trig(theta1, theta2, l1, l2)
     T = np.zeros(batch + (4, 4))
     T[..., 0, 0], T[..., 0, 1], T[..., 0, 3] = c12, -s12, a1 * c1 + a2 * c12
     T[..., 1, 0], T[..., 1, 1], T[..., 1, 3] = s12, c12, a1 * s1 + a2 * s12
@@ -65,11 +69,7 @@ def planar_2r_jacobian(theta1, theta2, l1, l2) -> np.ndarray:
     >>> round(float(np.linalg.det(J[:2])), 12)  # l1 l2 sin θ2
     1.0
     """
-    t1, t2 = as_array(theta1, "theta1"), as_array(theta2, "theta2")
-    a1, a2 = _lengths(l1, l2)
-    batch = broadcast((t1, 0, "theta1"), (t2, 0, "theta2"), (a1, 0, "l1"), (a2, 0, "l2"))
-    s1, c1 = np.sin(t1), np.cos(t1)
-    s12, c12 = np.sin(t1 + t2), np.cos(t1 + t2)
+    a1, a2, c1, s1, c12, s12, batch = _trig(theta1, theta2, l1, l2)
     J = np.empty(batch + (3, 2))
     J[..., 0, 0], J[..., 0, 1] = -a1 * s1 - a2 * s12, -a2 * s12
     J[..., 1, 0], J[..., 1, 1] = a1 * c1 + a2 * c12, a2 * c12
