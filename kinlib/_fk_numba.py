@@ -54,7 +54,7 @@ def tree(q, sel, ints, floats, M):  # pragma: no cover - compiled
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, fastmath=True)
 def _walk(q, i, ints, floats, D, T, Z, O):  # pragma: no cover - compiled
     """T = D_0 Z(q_1) D_1 ... Z(q_m) D_m for configuration i; Z[k], O[k] get joint k's
     world axis (the z column before its motion) and origin."""
@@ -110,19 +110,24 @@ def _columns(T, Z, O, ints, floats, J):  # pragma: no cover - compiled
             J[2, col] += w * z2
 
 
+CHUNKS = 64  # scratch arrays are allocated once per chunk of configurations, not per one
+
+
 def chain(q, ints, floats, D):  # pragma: no cover - compiled
     N = q.shape[0]
     m = ints.shape[1]
     out = np.zeros((N, 4, 4))
-    for i in numba.prange(N):
+    chunks = min(N, CHUNKS)
+    for c in numba.prange(chunks):
         T = np.empty((3, 4))
         Z = np.empty((m, 3))
         O = np.empty((m, 3))
-        _walk(q, i, ints, floats, D, T, Z, O)
-        for r in range(3):
-            for c in range(4):
-                out[i, r, c] = T[r, c]
-        out[i, 3, 3] = 1.0
+        for i in range(c * N // chunks, (c + 1) * N // chunks):
+            _walk(q, i, ints, floats, D, T, Z, O)
+            for r in range(3):
+                for k in range(4):
+                    out[i, r, k] = T[r, k]
+            out[i, 3, 3] = 1.0
     return out
 
 
@@ -134,26 +139,29 @@ def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
     m = ints.shape[1]
     out = np.zeros((N, 4, 4))
     J = np.zeros((N, 6, dof))
-    for i in numba.prange(N):
+    chunks = min(N, CHUNKS)
+    for c in numba.prange(chunks):
         T = np.empty((3, 4))
         Z = np.empty((m, 3))
         O = np.empty((m, 3))
-        _walk(q, i, ints, floats, D, T, Z, O)
-        for r in range(3):
-            for c in range(4):
-                out[i, r, c] = T[r, c]
-        out[i, 3, 3] = 1.0
-        _columns(T, Z, O, ints, floats, J[i])
+        for i in range(c * N // chunks, (c + 1) * N // chunks):
+            _walk(q, i, ints, floats, D, T, Z, O)
+            for r in range(3):
+                for k in range(4):
+                    out[i, r, k] = T[r, k]
+            out[i, 3, 3] = 1.0
+            _columns(T, Z, O, ints, floats, J[i])
     return out, J
 
 
 def _parallel(fn, name):
     """``fn`` compiled with its prange loop spread over the cores, cached under ``name``."""
     code = fn.__code__.replace(co_name=name, co_qualname=name)
-    return numba.njit(cache=True, parallel=True)(types.FunctionType(code, fn.__globals__, name))
+    return numba.njit(cache=True, parallel=True, fastmath=True)(
+        types.FunctionType(code, fn.__globals__, name))
 
 
 chain_parallel = _parallel(chain, "chain_par")
 chain_jacobian_parallel = _parallel(chain_jacobian, "chain_jacobian_par")
-chain = numba.njit(cache=True)(chain)
+chain = numba.njit(cache=True, fastmath=True)(chain)
 chain_jacobian = numba.njit(cache=True)(chain_jacobian)
