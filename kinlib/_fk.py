@@ -112,7 +112,10 @@ class ChainTable:
             offset.append(table.offset[j])
             D.append(B.T @ jt.post)
         self.D = np.ascontiguousarray(np.stack(D)[:, :3, :])
-        self.ints = np.array([kinds, qidx], dtype=np.int64).reshape(2, -1)
+        # row 2: 1 where D[k + 1] rotates about x only (every DH link): a cheaper product
+        rx = [int(d[0, 0] == 1.0 and not d[0, 1:3].any() and not d[1:3, 0].any())
+              for d in self.D[1:]]
+        self.ints = np.array([kinds, qidx, rx], dtype=np.int64).reshape(3, -1)
         self.floats = np.array([mult, offset], dtype=float).reshape(2, -1)
 
 

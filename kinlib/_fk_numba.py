@@ -77,6 +77,15 @@ def _walk(q, i, ints, floats, D, T, Z, O):  # pragma: no cover - compiled
         else:  # T @ Tz(qe)
             for r in range(3):
                 T[r, 3] += qe * T[r, 2]
+        if ints[2, k] == 1:  # T @ D[k + 1] with D's rotation about x only: column 0 stays
+            for r in range(3):
+                t0 = T[r, 0]
+                t1 = T[r, 1]
+                t2 = T[r, 2]
+                T[r, 1] = t1 * D[k + 1, 1, 1] + t2 * D[k + 1, 2, 1]
+                T[r, 2] = t1 * D[k + 1, 1, 2] + t2 * D[k + 1, 2, 2]
+                T[r, 3] += t0 * D[k + 1, 0, 3] + t1 * D[k + 1, 1, 3] + t2 * D[k + 1, 2, 3]
+            continue
         for r in range(3):  # T @ D[k + 1], D affine (bottom row 0 0 0 1)
             t0 = T[r, 0]
             t1 = T[r, 1]
