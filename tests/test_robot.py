@@ -249,6 +249,17 @@ def test_chain_kernel_all_axis_cases():
     np.testing.assert_allclose(robot.fk(q[0], link="base"), np.eye(4), atol=0)
 
 
+def test_compiled_sincos_matches_libm():
+    if _fk._compiled() is None:
+        pytest.skip("numba is not installed or KINLIB_NUMBA=0")
+    sincos = _fk._compiled().sincos
+    x = np.concatenate([np.linspace(-20, 20, 40_001), np.pi / 4 * np.arange(-40, 41),
+                        [0.0, -0.0, 1e-300, 5e-324, 0.855, 2.426, 99_999.9, -1e5, 3e5, 1e300]])
+    got = np.array([sincos(v) for v in x])
+    np.testing.assert_allclose(got[:, 0], np.sin(x), rtol=0, atol=2.3e-16)
+    np.testing.assert_allclose(got[:, 1], np.cos(x), rtol=0, atol=2.3e-16)
+
+
 def test_numba_is_optional_and_lazy():
     """Building robots never imports numba; FK imports it on first use unless disabled."""
     code = ("import sys, numpy as np, kinlib.robots as r; p = r.puma560(); "
