@@ -54,6 +54,8 @@ def tree(q, sel, ints, floats, M):  # pragma: no cover - compiled
     return out
 
 
+# No kernel here uses fastmath: it would let LLVM reassociate the two-term reduction below
+# (x − k·hi) − k·lo into x − k·(hi + lo), and sin(10π) would come out as 0.
 # sin and cos together: one Cody–Waite reduction by π/2, then fdlibm's kernel polynomials
 # (libm's sin and cos each redo the reduction; for joint angles beyond ±0.86 rad that is
 # most of the FK kernel's time). Within 1 ulp of libm for |x| <= 1e5; libm beyond.
@@ -89,7 +91,7 @@ def sincos(x):  # pragma: no cover - compiled
     return -c, s
 
 
-@numba.njit(cache=True, fastmath=True)
+@numba.njit(cache=True)
 def _walk(q, i, ints, floats, D, T, Z, O):  # pragma: no cover - compiled
     """T = D_0 Z(q_1) D_1 ... Z(q_m) D_m for configuration i; Z[k], O[k] get joint k's
     world axis (the z column before its motion) and origin."""
@@ -242,11 +244,11 @@ def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
 def _parallel(fn, name):
     """``fn`` compiled with its prange loop spread over the cores, cached under ``name``."""
     code = fn.__code__.replace(co_name=name, co_qualname=name)
-    return numba.njit(cache=True, parallel=True, fastmath=True)(
+    return numba.njit(cache=True, parallel=True)(
         types.FunctionType(code, fn.__globals__, name))
 
 
 chain_parallel = _parallel(chain, "chain_par")
 chain_jacobian_parallel = _parallel(chain_jacobian, "chain_jacobian_par")
-chain = numba.njit(cache=True, fastmath=True)(chain)
+chain = numba.njit(cache=True)(chain)
 chain_jacobian = numba.njit(cache=True)(chain_jacobian)
