@@ -10,6 +10,7 @@ import pytest
 import scipy.linalg
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from reference import random_unit_vectors, unit_vectors
 from scipy.spatial.transform import Rotation
 
 import kinlib as kl
@@ -53,17 +54,6 @@ def max_err(A, B):
     return float(np.abs(np.asarray(A) - np.asarray(B)).max(initial=0.0))
 
 
-def random_unit_vectors(n, rng):
-    u = rng.normal(size=(n, 3))
-    return u / np.linalg.norm(u, axis=-1, keepdims=True)
-
-
-@st.composite
-def unit_vectors(draw):
-    v = np.array(draw(st.tuples(*[st.floats(-1.0, 1.0)] * 3)))
-    n = np.linalg.norm(v)
-    assume(n > 1e-3)
-    return v / n
 
 
 # --------------------------------------------------------------------------- forward

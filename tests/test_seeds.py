@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from reference import unit_vectors
 from scipy.spatial.transform import Rotation
 
 import kinlib as kl
@@ -71,12 +72,6 @@ angles = st.floats(-np.pi, np.pi, allow_nan=False)
 coords = st.floats(-100.0, 100.0, allow_nan=False)
 vec3 = st.tuples(coords, coords, coords).map(np.array)
 
-
-@st.composite
-def unit_vectors(draw):
-    v = np.array(draw(st.tuples(*[st.floats(-1.0, 1.0)] * 3)))
-    n = np.linalg.norm(v)
-    return v / n if n > 1e-3 else np.array([0.0, 1.0, 0.0])
 
 
 @st.composite

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from reference import unit_vectors
 from scipy.spatial.transform import Rotation
 
 import kinlib as kl
@@ -42,12 +43,6 @@ def generic_rotations(draw):
 
 rotations = st.one_of(generic_rotations(), st.sampled_from(SPECIAL_ROTATIONS))
 
-
-@st.composite
-def unit_vectors(draw):
-    v = draw(st.tuples(*[st.floats(-1.0, 1.0)] * 3).map(np.array))
-    n = np.linalg.norm(v)
-    return v / n if n > 1e-3 else np.array([0.0, 0.0, 1.0])
 
 
 def hom(R, p):
