@@ -21,6 +21,7 @@ from .dual_quaternions import (
     dual_quat_from_screw,
     dual_quat_from_transform,
     dual_quat_multiply,
+    dual_quat_sclerp,
     dual_quat_transform_point,
     screw_from_dual_quat,
     transform_from_dual_quat,
@@ -81,6 +82,18 @@ from .velocity import (
 
 __version__ = "0.1.0"
 
+_SUBMODULES = ("plot", "robots", "symbolic", "viz")
+
+
+def __getattr__(name):
+    """``kl.symbolic``, ``kl.plot``, ``kl.viz``, ``kl.robots`` import on first use."""
+    if name in _SUBMODULES:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'kinlib' has no attribute {name!r}")
+
+
 __all__ = [
     "add_angular_velocities",
     "angular_velocity",
@@ -127,6 +140,7 @@ __all__ = [
     "dual_quat_from_screw",
     "dual_quat_from_transform",
     "dual_quat_multiply",
+    "dual_quat_sclerp",
     "dual_quat_transform_point",
     "euler_from_matrix",
     "euler_gimbal_lock",

@@ -107,6 +107,9 @@ SLOTS = [
     ("dual_quat_from_screw", "m", (3,), lambda x: kl.dual_quat_from_screw(L_OK, x, 0.5, 1.0)),
     ("dual_quat_from_screw", "theta", (), lambda x: kl.dual_quat_from_screw(L_OK, M_OK, x, 1.0)),
     ("dual_quat_from_screw", "d", (), lambda x: kl.dual_quat_from_screw(L_OK, M_OK, 0.5, x)),
+    ("dual_quat_sclerp", "dq0", (8,), lambda x: kl.dual_quat_sclerp(x, DQ_OK, 0.5)),
+    ("dual_quat_sclerp", "dq1", (8,), lambda x: kl.dual_quat_sclerp(DQ_OK, x, 0.5)),
+    ("dual_quat_sclerp", "t", (), lambda x: kl.dual_quat_sclerp(DQ_OK, DQ_OK, x)),
     ("dh_transform", "theta", (), lambda x: kl.dh_transform(theta=x, d=0.1, a=0.2, alpha=0.3)),
     ("dh_transform", "d", (), lambda x: kl.dh_transform(theta=0.1, d=x, a=0.2, alpha=0.3)),
     ("dh_transform", "a", (), lambda x: kl.dh_transform(theta=0.1, d=0.1, a=x, alpha=0.3)),
@@ -155,8 +158,6 @@ NOT_ARRAY_FUNCTIONS = {"load_urdf", "add_angular_velocities", "singular_values",
 NONE_OK = {("transform", "R"), ("transform", "p")}
 # is_rotation answers False for NaN/inf (documented) instead of raising
 NONFINITE_OK = {("is_rotation", "R")}
-# Known kinlib bug (quaternions.py, not ours to edit): quat_slerp normalises q0 and q1 through
-# quat_normalize, so their errors are reported under the name "q", not "q0"/"q1".
 
 BAD_SHAPES = {
     (3, 3): [(2,), (3,), (3, 4), (4, 3), (2, 2, 2), ()],
@@ -550,6 +551,8 @@ NO_BROADCAST = [
     ("dual_quat_from_screw l/m", lambda: kl.dual_quat_from_screw(L2, np.zeros((3, 3)), 0.5, 1.0)),
     ("dual_quat_from_screw l/theta", lambda: kl.dual_quat_from_screw(L2, M_OK, [1, 2, 3], 1.0)),
     ("dual_quat_from_screw theta/d", lambda: kl.dual_quat_from_screw(L_OK, M_OK, [1, 2], V_OK)),
+    ("dual_quat_sclerp dq0/dq1", lambda: kl.dual_quat_sclerp(DQ2, DQ3, 0.5)),
+    ("dual_quat_sclerp dq/t", lambda: kl.dual_quat_sclerp(DQ2, DQ2, [0.1, 0.2, 0.3])),
 ]
 
 

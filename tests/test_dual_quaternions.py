@@ -439,3 +439,98 @@ def test_non_unit_member_of_a_batch_is_named():
     dqs[3, 0] = 1.5
     with pytest.raises(kl.KinlibError, match=r"dq\[3\]"):
         kl.transform_from_dual_quat(dqs)
+
+
+# --------------------------------------------------------------------------- ScLERP
+
+
+def sclerp(T0, T1, t):
+    return kl.transform_from_dual_quat(
+        kl.dual_quat_sclerp(kl.dual_quat_from_transform(T0), kl.dual_quat_from_transform(T1), t)
+    )
+
+
+@settings(max_examples=150, deadline=None)
+@given(rigid_transforms(), unit_vectors(), vec3, st.floats(0.0, 3.1), st.floats(-5.0, 5.0),
+       st.floats(0.0, 1.0))
+def test_sclerp_follows_the_screw(T0, l, c, theta, d, t):
+    # the relative motion is a screw built here with scipy; ScLERP applies the fraction t of it
+    T1 = T0 @ screw_transform(l, c / 10.0, theta, d)
+    expected = T0 @ screw_transform(l, c / 10.0, t * theta, t * d)
+    np.testing.assert_allclose(sclerp(T0, T1, t), expected, rtol=0, atol=1e-9)
+
+
+@settings(max_examples=60, deadline=None)
+@given(rigid_transforms(), rigid_transforms())
+def test_sclerp_endpoints(T0, T1):
+    np.testing.assert_allclose(sclerp(T0, T1, 0.0), T0, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(sclerp(T0, T1, 1.0), T1, rtol=0, atol=1e-9)
+
+
+@settings(max_examples=60, deadline=None)
+@given(rigid_transforms(), screw_friendly_transforms(), rigid_transforms(), st.floats(0.0, 1.0))
+def test_sclerp_does_not_depend_on_the_world_or_the_body_frame(T0, Trel, G, t):
+    # left-invariance: moving both ends by G moves the path by G; right-invariance: changing
+    # the body frame by H (attached to the body) changes every pose by H
+    T1 = T0 @ Trel
+    path = sclerp(T0, T1, t)
+    np.testing.assert_allclose(sclerp(G @ T0, G @ T1, t), G @ path, rtol=0, atol=1e-8)
+    H = hom(Rotation.from_rotvec([0.3, -0.2, 0.5]).as_matrix(), [0.4, 1.0, -2.0])
+    np.testing.assert_allclose(sclerp(T0 @ H, T1 @ H, t), path @ H, rtol=0, atol=1e-8)
+
+
+def test_sclerp_pure_translation_is_linear():
+    T0, T1 = hom(np.eye(3), [1.0, 2.0, 3.0]), hom(np.eye(3), [-1.0, 0.0, 7.0])
+    ts = np.linspace(0.0, 1.0, 11)
+    out = sclerp(T0, T1, ts)
+    line = (1 - ts)[:, None] * [1, 2, 3] + ts[:, None] * [-1, 0, 7]
+    np.testing.assert_allclose(out[:, :3, 3], line, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(out[:, :3, :3], np.broadcast_to(np.eye(3), (11, 3, 3)), atol=1e-15)
+
+
+@pytest.mark.parametrize("theta", [1e-4, 1e-7, 1e-10, 1e-13, 0.0])
+def test_sclerp_accurate_for_tiny_rotations(theta):
+    # the screw axis runs off to infinity as θ → 0; the result must not
+    l, c = np.array([0.0, 0.6, 0.8]), np.array([3.0, 1.0, -2.0])
+    T0 = hom(Rotation.from_rotvec([0.2, 0.1, -0.4]).as_matrix(), [0.5, 0.5, 0.5])
+    for offset in ([0.0, 0.0, 0.0], [5.0, -7.0, 1.0]):  # plus a perpendicular slide
+        Trel = screw_transform(l, c, theta, 0.7)
+        Trel[:3, 3] += offset
+        T1 = T0 @ Trel
+        got = sclerp(T0, T1, 0.25)
+        # at θ → 0 the motion is a translation: a quarter of it
+        expected = T0 @ screw_transform(l, c, 0.25 * theta, 0.25 * 0.7)
+        expected[:3, 3] += T0[:3, :3] @ (0.25 * np.asarray(offset))
+        # exact without the slide; with it, the true screw differs from a straight slide by
+        # about t(1 - t) θ |slide| / 2, and must not blow up
+        slack = theta * np.linalg.norm(offset)
+        np.testing.assert_allclose(got, expected, rtol=0, atol=1e-12 + slack)
+
+
+def test_sclerp_takes_the_short_way_and_ignores_the_sign():
+    T0, T1 = np.eye(4), hom(Rotation.from_rotvec([0.0, 0.0, 1.2]).as_matrix(), [0.0, 0.0, 1.0])
+    a, b = kl.dual_quat_from_transform(T0), kl.dual_quat_from_transform(T1)
+    mid = kl.transform_from_dual_quat(kl.dual_quat_sclerp(a, -b, 0.5))
+    np.testing.assert_allclose(mid, sclerp(T0, T1, 0.5), atol=1e-12)
+    half = Rotation.from_rotvec([0, 0, 0.6]).as_matrix()
+    np.testing.assert_allclose(mid[:3, :3], half, atol=1e-12)
+
+
+def test_sclerp_rotation_matches_slerp():
+    T0 = hom(Rotation.from_rotvec([0.1, 0.2, 0.3]).as_matrix(), [1.0, 0.0, 0.0])
+    T1 = hom(Rotation.from_rotvec([-1.0, 0.5, 2.0]).as_matrix(), [0.0, 4.0, 2.0])
+    ts = np.linspace(0, 1, 7)
+    dq = kl.dual_quat_sclerp(kl.dual_quat_from_transform(T0), kl.dual_quat_from_transform(T1), ts)
+    q = kl.quat_slerp(kl.quat_from_matrix(T0[:3, :3]), kl.quat_from_matrix(T1[:3, :3]), ts)
+    assert_same_up_to_sign(dq[:, :4], q, atol=1e-12)
+
+
+def test_sclerp_batched_broadcast():
+    T0 = hom(np.eye(3), [0.0, 0.0, 0.0])
+    T1 = np.stack([screw_transform([0, 0, 1.0], [1.0, 0, 0], th, 0.5) for th in (0.5, 1.0, 2.0)])
+    a, b = kl.dual_quat_from_transform(T0), kl.dual_quat_from_transform(T1)
+    out = kl.dual_quat_sclerp(a, b[:, None, :], np.array([0.0, 0.5, 1.0, 0.2]))
+    assert out.shape == (3, 4, 8)
+    for i in range(3):
+        for j, t in enumerate([0.0, 0.5, 1.0, 0.2]):
+            np.testing.assert_allclose(out[i, j], kl.dual_quat_sclerp(a, b[i], t), atol=1e-15)

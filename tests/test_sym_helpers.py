@@ -1,0 +1,289 @@
+"""kinlib.symbolic: canonical trigonometric reduction, readable simplification, batched lambdify.
+
+Soundness is checked numerically (a reduced expression evaluates to the same numbers as the
+input at random points), completeness on textbook identities (each typed here, must reduce to
+exactly 0), determinism across interpreter runs with different hash seeds, and the batched
+functions against kinlib's numeric constructors and robots.
+"""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import kinlib as kl
+import kinlib.robots
+from kinlib.symbolic import lambdify_batched, simplify_rotation, sym_equal, trig_reduce
+
+t, t1, t2, t3 = sp.symbols("theta theta1 theta2 theta3", real=True)
+a, b, g = sp.symbols("alpha beta gamma", real=True)
+l1, l2 = sp.symbols("l1 l2", positive=True)
+kx, ky, kz = sp.symbols("k_x k_y k_z", real=True)
+w, x, y, z = sp.symbols("w x y z", real=True)
+ROT = (kl.rotx, kl.roty, kl.rotz)
+
+
+def numeric(expr, symbols, values):
+    f = sp.lambdify(symbols, expr, "numpy")
+    return np.array(f(*values), dtype=float)
+
+
+def random_rotation_product(rng, angles, length):
+    M = sp.eye(3)
+    for _ in range(length):
+        M = M * ROT[rng.integers(3)](angles[rng.integers(len(angles))] * int(rng.integers(1, 3)))
+    return M
+
+
+# --------------------------------------------------------------------------- identities → 0
+
+IDENTITIES = [
+    sp.sin(t) ** 2 + sp.cos(t) ** 2 - 1,
+    sp.sin(2 * t) - 2 * sp.sin(t) * sp.cos(t),
+    sp.cos(2 * t) - (1 - 2 * sp.sin(t) ** 2),
+    sp.sin(t) - 2 * sp.sin(t / 2) * sp.cos(t / 2),
+    sp.cos(t) - (sp.cos(t / 2) ** 2 - sp.sin(t / 2) ** 2),
+    sp.cos(t1 + t2) - (sp.cos(t1) * sp.cos(t2) - sp.sin(t1) * sp.sin(t2)),
+    sp.sin(t1 - t2) - (sp.sin(t1) * sp.cos(t2) - sp.cos(t1) * sp.sin(t2)),
+    sp.sin(3 * t) - (3 * sp.sin(t) - 4 * sp.sin(t) ** 3),
+    sp.tan(t) * sp.cos(t) - sp.sin(t),
+    sp.tan(t / 2) - sp.sin(t) / (1 + sp.cos(t)),
+    (1 - sp.tan(t / 2) ** 2) / (1 + sp.tan(t / 2) ** 2) - sp.cos(t),
+    sp.cos(t) ** 4 - sp.sin(t) ** 4 - sp.cos(2 * t),
+    sp.sin(t1 + t2 + t3) - (
+        sp.sin(t1) * sp.cos(t2 + t3) + sp.cos(t1) * sp.sin(t2 + t3)
+    ),
+]
+
+
+@pytest.mark.parametrize("expr", IDENTITIES, ids=range(len(IDENTITIES)))
+def test_identities_reduce_to_exactly_zero(expr):
+    assert trig_reduce(expr) == 0
+    assert sym_equal(expr, 0)
+
+
+def test_unit_vector_identities():
+    k = sp.Matrix([kx, ky, kz])
+    R = kl.matrix_from_axis_angle([kx, ky, kz], t)  # symbolic axis: taken as unit
+    assert trig_reduce(k.dot(k), unit=[kx, ky, kz]) == 1
+    assert sym_equal(R.T * R, sp.eye(3), unit=[kx, ky, kz])
+    assert sym_equal(R * k, k, unit=[kx, ky, kz])  # the axis is fixed
+    assert sym_equal(R.det(), 1, unit=[kx, ky, kz])
+    # without the constraint these are not identities
+    assert not sym_equal(R.T * R, sp.eye(3))
+
+
+def test_two_unit_vectors_at_once():
+    expr = (kx**2 + ky**2 + kz**2) * (w**2 + x**2 + y**2 + z**2)
+    assert trig_reduce(expr, unit=[[kx, ky, kz], [w, x, y, z]]) == 1
+    assert trig_reduce(expr, unit=[kx, ky, kz]) == w**2 + x**2 + y**2 + z**2
+
+
+def test_quaternion_rotation_is_rodrigues():
+    # seed 000: q = (cos θ/2, k sin θ/2) rotates v like Rodrigues' formula; sympy's own
+    # Quaternion class does the conjugation q v q*
+    q = sp.Quaternion(sp.cos(t / 2), *(sp.sin(t / 2) * e for e in (kx, ky, kz)))
+    v = sp.Quaternion(0, x, y, z)
+    r = q * v * q.conjugate()
+    R = sp.Matrix([r.b, r.c, r.d]).jacobian([x, y, z])
+    rodrigues = sp.cos(t) * sp.eye(3) + sp.sin(t) * kl.skew([kx, ky, kz]) + (
+        1 - sp.cos(t)) * sp.Matrix([kx, ky, kz]) * sp.Matrix([[kx, ky, kz]])
+    assert sym_equal(R, rodrigues, unit=[kx, ky, kz])
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_random_rotation_products_are_orthonormal(seed):
+    rng = np.random.default_rng(seed)
+    M = random_rotation_product(rng, [a, b, g, t1], int(rng.integers(2, 6)))
+    assert trig_reduce(M.T * M) == sp.eye(3)
+    assert trig_reduce(M.det()) == 1
+
+
+# --------------------------------------------------------------------------- soundness
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_reduction_keeps_the_value(seed):
+    # stress: repeated angles, double angles and a half angle mixed in
+    rng = np.random.default_rng(100 + seed)
+    syms = [a, b, g, t1]
+    M = random_rotation_product(rng, syms, int(rng.integers(2, 6)))
+    M = M * sp.Matrix([l1, l2 * sp.sin(b / 2), 1])
+    R = trig_reduce(M)
+    for _ in range(5):
+        vals = list(rng.uniform(-np.pi, np.pi, 4)) + list(rng.uniform(0.1, 2, 2))
+        np.testing.assert_allclose(
+            numeric(R, syms + [l1, l2], vals), numeric(M, syms + [l1, l2], vals), atol=1e-12
+        )
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_simplified_chains_keep_the_value(seed):
+    # the typical use: a chain of elementary rotations and translations, one angle each
+    rng = np.random.default_rng(200 + seed)
+    syms = sp.symbols("q1:5", real=True)
+    T = sp.eye(4)
+    for q in syms:
+        T = T * kl.transform(ROT[rng.integers(3)](q), list(rng.integers(-2, 3, 3)))
+    S = simplify_rotation(T)
+    assert sp.count_ops(S) <= sp.count_ops(sp.expand(T))  # never longer than expanded
+    for _ in range(5):
+        vals = rng.uniform(-np.pi, np.pi, 4)
+        np.testing.assert_allclose(numeric(S, syms, vals), numeric(T, syms, vals), atol=1e-12)
+
+
+def test_non_identities_are_not_zero():
+    assert not sym_equal(sp.cos(t), sp.sin(t))
+    assert not sym_equal(sp.sin(t / 2), sp.sin(t) / 2)
+    assert not sym_equal(kl.rotz(a) * kl.roty(b), kl.roty(b) * kl.rotz(a))
+    assert trig_reduce(sp.cos(t1 + t2) - sp.cos(t1) * sp.cos(t2)) != 0
+
+
+def test_canonical_equal_inputs_give_identical_outputs():
+    e1 = sp.cos(t1 + t2)
+    e2 = sp.cos(t1) * sp.cos(t2) - sp.sin(t1) * sp.sin(t2)
+    e3 = 1 - 2 * sp.sin((t1 + t2) / 2) ** 2
+    assert trig_reduce(e1) == trig_reduce(e2)  # same angle scale: the same polynomial
+    assert sym_equal(e1, e3) and sym_equal(e2, e3)  # a half angle: equal after rescaling
+    assert simplify_rotation(e2) == simplify_rotation(e3) == sp.cos(t1 + t2)
+
+
+# --------------------------------------------------------------------------- readable output
+
+
+def test_planar_2r_fk_is_eq_5_4():
+    T = kl.dh_transform(theta=t1, d=0, a=l1, alpha=0) * kl.dh_transform(
+        theta=t2, d=0, a=l2, alpha=0)
+    S = simplify_rotation(T)
+    # seed 001, eq. 5.4, typed here
+    expected = sp.Matrix([
+        [sp.cos(t1 + t2), -sp.sin(t1 + t2), 0, l1 * sp.cos(t1) + l2 * sp.cos(t1 + t2)],
+        [sp.sin(t1 + t2), sp.cos(t1 + t2), 0, l1 * sp.sin(t1) + l2 * sp.sin(t1 + t2)],
+        [0, 0, 1, 0],
+        [0, 0, 0, 1],
+    ])
+    assert S == expected  # structurally, not just numerically
+
+
+def test_puma_position_is_craigs_closed_form():
+    # Craig, Introduction to Robotics, eq. 3.14 (PUMA 560, modified DH)
+    q = sp.symbols("q1:7", real=True)
+    a2, a3, d3, d4 = sp.symbols("a2 a3 d3 d4", real=True)
+    rows = [(0, 0, 0), (-sp.pi / 2, 0, 0), (0, a2, d3), (-sp.pi / 2, a3, d4),
+            (sp.pi / 2, 0, 0), (-sp.pi / 2, 0, 0)]
+    T = sp.eye(4)
+    for qi, (alpha, a_, d) in zip(q, rows, strict=False):
+        T = T * kl.mdh_transform(theta=qi, d=d, a=a_, alpha=alpha)
+    c1, s1 = sp.cos(q[0]), sp.sin(q[0])
+    c2, s2 = sp.cos(q[1]), sp.sin(q[1])
+    c23, s23 = sp.cos(q[1] + q[2]), sp.sin(q[1] + q[2])
+    px = c1 * (a2 * c2 + a3 * c23 - d4 * s23) - d3 * s1
+    py = s1 * (a2 * c2 + a3 * c23 - d4 * s23) + d3 * c1
+    pz = -a3 * s23 - a2 * s2 - d4 * c23
+    assert sym_equal(T[:3, 3], sp.Matrix([px, py, pz]))
+    S = simplify_rotation(T[:3, 3])
+    assert sym_equal(S, sp.Matrix([px, py, pz]))
+    # readable: sums of angles recombined, no longer than the expanded textbook form
+    assert S[2].has(sp.sin(q[1] + q[2])) and S[2].has(sp.cos(q[1] + q[2]))
+    for got, book in zip(S, (px, py, pz), strict=False):
+        assert sp.count_ops(got) <= sp.count_ops(sp.expand(book))
+
+
+def test_deterministic_across_hash_seeds():
+    code = (
+        "import sympy as sp, kinlib as kl\n"
+        "from kinlib.symbolic import simplify_rotation\n"
+        "a, b, g = sp.symbols('alpha beta gamma', real=True)\n"
+        "M = kl.rotz(a) * kl.roty(b) * kl.rotx(g) * kl.rotz(b / 2)\n"
+        "print(sp.srepr(simplify_rotation(M)))\n"
+    )
+    outs = set()
+    for seed in ("1", "2", "12345"):
+        env = dict(os.environ, PYTHONHASHSEED=seed)
+        outs.add(subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                                text=True, check=True).stdout)
+    assert len(outs) == 1
+
+
+# --------------------------------------------------------------------------- lambdify_batched
+
+
+def test_lambdify_matches_numeric_rotations_batched():
+    f = lambdify_batched([a, b, g], kl.rotz(a) * kl.roty(b) * kl.rotx(g))
+    rng = np.random.default_rng(1)
+    ang = rng.uniform(-3, 3, (50, 3))
+    out = f(ang[:, 0], ang[:, 1], ang[:, 2])
+    assert out.shape == (50, 3, 3)
+    np.testing.assert_allclose(out, kl.matrix_from_euler(ang, "ZYX"), atol=1e-14)
+
+
+def test_lambdify_vector_argument_against_robot_fk():
+    rob = kl.robots.planar_2r(0.7, 0.4)
+    q1, q2 = sp.symbols("q1 q2", real=True)
+    T = kl.dh_transform(theta=q1, d=0, a=l1, alpha=0) * kl.dh_transform(
+        theta=q2, d=0, a=l2, alpha=0)
+    f = lambdify_batched([[q1, q2], l1, l2], T)
+    qs = np.random.default_rng(2).uniform(-3, 3, (4, 5, 2))
+    out = f(qs, 0.7, 0.4)
+    assert out.shape == (4, 5, 4, 4)
+    np.testing.assert_allclose(out, rob.fk(qs), atol=1e-14)
+    np.testing.assert_array_equal(out[..., 3, :], np.broadcast_to([0, 0, 0, 1.0], (4, 5, 4)))
+
+
+def test_lambdify_scalar_and_broadcasting():
+    f = lambdify_batched([t, l1], l1 * sp.cos(t))
+    assert f(0.0, 2.0).shape == ()
+    out = f(np.array([0.0, np.pi]), np.array([[1.0], [2.0]]))
+    np.testing.assert_allclose(out, [[1.0, -1.0], [2.0, -2.0]], atol=1e-15)
+    const = lambdify_batched([t], sp.Matrix([[1, 0], [0, 2]]))
+    assert const(np.zeros(3)).shape == (3, 2, 2)
+
+
+@pytest.mark.parametrize(
+    ("call", "words"),
+    [
+        (lambda: lambdify_batched([t], l1 * sp.cos(t)), "l1"),
+        (lambda: lambdify_batched(t, sp.cos(t)), "args"),
+        (lambda: lambdify_batched([t, t], sp.cos(t)), "twice"),
+        (lambda: lambdify_batched(["t"], sp.cos(t)), "args[0]"),
+        (lambda: lambdify_batched([t], "cos(t)"), "expr"),
+        (lambda: lambdify_batched([t], sp.cos(t))(1.0, 2.0), "expected 1 input"),
+        (lambda: lambdify_batched([t, l1], sp.cos(t) * l1)(np.zeros(2), np.zeros(3)),
+         "do not broadcast"),
+        (lambda: lambdify_batched([[t1, t2]], sp.cos(t1))(np.zeros(3)), "(..., 2)"),
+        (lambda: lambdify_batched([t], sp.cos(t))("x"), "theta"),
+        (lambda: lambdify_batched([t], sp.cos(t))(np.nan), "theta"),
+        (lambda: lambdify_batched([t], 1 / sp.sin(t))(np.array([1.0, 0.0])), "not finite"),
+        (lambda: lambdify_batched([t], sp.sqrt(t))(-1.0), "not finite"),
+        (lambda: trig_reduce(sp.cos(t), unit=[kx]), "unit"),
+        (lambda: trig_reduce(sp.cos(t), unit=["kx", "ky"]), "unit"),
+        (lambda: trig_reduce(sp.cos(t), unit=[[kx, ky], [ky, kz]]), "two unit vectors"),
+        (lambda: trig_reduce(None), "expr"),
+        (lambda: sym_equal(sp.eye(3), sp.eye(4)), "cannot compare"),
+    ],
+)
+def test_bad_input(call, words):
+    with pytest.raises(kl.KinlibError) as info:
+        call()
+    assert words in str(info.value), str(info.value)
+
+
+def test_not_finite_names_the_batch_index():
+    f = lambdify_batched([t], sp.Matrix([sp.cos(t), 1 / sp.sin(t)]))
+    with pytest.raises(kl.KinlibError, match=r"entry 1 .*\[2\]"):
+        f(np.array([1.0, 2.0, 0.0]))
+
+
+def test_submodules_load_on_first_use():
+    code = (
+        "import sys, kinlib as kl\n"
+        "assert 'sympy' not in sys.modules\n"
+        "assert kl.symbolic.sym_equal is not None and 'sympy' in sys.modules\n"
+        "assert kl.robots.puma560().dof == 6\n"
+        "try:\n    kl.no_such_thing\nexcept AttributeError as e:\n    print(e)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert "no attribute 'no_such_thing'" in out.stdout
