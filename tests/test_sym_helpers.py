@@ -287,3 +287,32 @@ def test_submodules_load_on_first_use():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert "no attribute 'no_such_thing'" in out.stdout
+
+
+def test_sum_and_difference_patterns_fold_exactly():
+    # rotations about one axis add: Rz(α) Rz(β)ᵀ = Rz(α − β), Rx(α) Rx(β) Rx(γ) = Rx(α + β + γ)
+    assert simplify_rotation(kl.rotz(a) * kl.rotz(b).T) == kl.rotz(a - b)
+    assert simplify_rotation(kl.rotx(a) * kl.rotx(b) * kl.rotx(g)) == kl.rotx(a + b + g)
+    # a product that has no sum in it stays a product
+    assert simplify_rotation(kl.rotz(a) * kl.roty(b)) == kl.rotz(a) * kl.roty(b)
+    # unequal coefficients must not fold
+    e = 2 * sp.cos(a) * sp.cos(b) - sp.sin(a) * sp.sin(b)
+    assert sym_equal(simplify_rotation(e), e) and not simplify_rotation(e).has(sp.cos(a + b))
+
+
+def test_puma_full_transform_orientation():
+    # Craig eq. 3.13-3.14 (modified DH PUMA): r13, r23, r33 and the wrist entries, typed here
+    q = sp.symbols("q1:7", real=True)
+    rows = [(0, 0, 0), (-sp.pi / 2, 0, 0), (0, 1, 0), (-sp.pi / 2, 0, 0),
+            (sp.pi / 2, 0, 0), (-sp.pi / 2, 0, 0)]
+    T = sp.eye(4)
+    for qi, (alpha, a_, d) in zip(q, rows, strict=True):
+        T = T * kl.mdh_transform(theta=qi, d=d, a=a_, alpha=alpha)
+    S = simplify_rotation(T)
+    c = [sp.cos(x) for x in q]
+    s_ = [sp.sin(x) for x in q]
+    c23, s23 = sp.cos(q[1] + q[2]), sp.sin(q[1] + q[2])
+    r33 = s23 * c[3] * s_[4] - c23 * c[4]
+    r13 = -c[0] * (c23 * c[3] * s_[4] + s23 * c[4]) - s_[0] * s_[3] * s_[4]
+    assert sym_equal(S[2, 2], r33) and sym_equal(S[0, 2], r13)
+    assert S[2, 2] == sp.expand(r33)  # folded to the textbook's c23 and s23
