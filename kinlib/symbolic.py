@@ -289,6 +289,29 @@ def _combine_sums(e: sp.Expr) -> sp.Expr:
     return out.xreplace(back)
 
 
+def _lower_half_angles(x: sp.Expr) -> sp.Expr:
+    """sin²(θ/2) → (1 − cos θ)/2, cos²(θ/2) → (1 + cos θ)/2: Rodrigues' form, not the half angle."""
+
+    def half(arg):
+        return any(
+            sp.expand(arg).coeff(v).is_Rational and sp.expand(arg).coeff(v).q % 2 == 0
+            for v in arg.free_symbols
+        )
+
+    def lower(p):
+        f, n = p.base, int(p.exp)
+        a = f.args[0]
+        c2 = sp.cos(2 * a)
+        sq = (1 - c2) / 2 if f.func is sp.sin else (1 + c2) / 2
+        return sq ** (n // 2) * f ** (n % 2)
+
+    return x.replace(
+        lambda p: p.is_Pow and p.base.func in (sp.sin, sp.cos) and p.exp.is_Integer
+        and p.exp >= 2 and half(p.base.args[0]),
+        lower,
+    )
+
+
 def simplify_rotation(expr, unit=None):
     r"""A readable, deterministic simplification of a rotation/transform product.
 
@@ -314,7 +337,9 @@ def simplify_rotation(expr, unit=None):
             return sp.factor_terms(x)
         x = _combine_sums(x)
         squares = any(p.base.func in (sp.sin, sp.cos) for p in x.atoms(sp.Pow))
-        return sp.factor_terms(sp.trigsimp(x) if squares else x)
+        if squares:
+            x = _combine_sums(sp.expand(_lower_half_angles(sp.trigsimp(x))))
+        return sp.factor_terms(x)
 
     if isinstance(e, sp.MatrixBase):
         return e.applyfunc(tidy)
@@ -353,7 +378,8 @@ def lambdify_batched(args, expr):
     -------
     f : callable
         ``f(*arrays)`` broadcasts the batch shapes of its inputs and returns a float array
-        of shape ``batch + expr.shape`` (``batch`` for a scalar expression). Constant entries
+        of shape ``batch + expr.shape`` (``batch`` for a scalar expression, ``batch + (n,)``
+        for an n×1 column vector, like kinlib's vectors). Constant entries
         are broadcast too, so a 4×4 transform keeps its ``[0, 0, 0, 1]`` row.
 
     >>> import numpy as np, sympy as sp
@@ -394,6 +420,8 @@ def lambdify_batched(args, expr):
             "list them in args or give them values with expr.subs(...)"
         )
     shape = tuple(e.shape) if isinstance(e, sp.MatrixBase) else ()
+    if len(shape) == 2 and shape[1] == 1:
+        shape = (shape[0],)  # a column vector gives (..., n), like kinlib's vectors
     entries = list(e) if shape else [e]
     fn = sp.lambdify(flat, entries, modules="numpy", cse=True)
     names = [

@@ -240,6 +240,10 @@ def test_lambdify_scalar_and_broadcasting():
     np.testing.assert_allclose(out, [[1.0, -1.0], [2.0, -2.0]], atol=1e-15)
     const = lambdify_batched([t], sp.Matrix([[1, 0], [0, 2]]))
     assert const(np.zeros(3)).shape == (3, 2, 2)
+    # a column vector comes out as (..., n), a row vector as (..., 1, n)
+    col = lambdify_batched([t], sp.Matrix([sp.cos(t), sp.sin(t), 0]))
+    np.testing.assert_allclose(col(np.array([0.0, np.pi / 2])), [[1, 0, 0], [0, 1, 0]], atol=1e-15)
+    assert lambdify_batched([t], sp.Matrix([[sp.cos(t), 0]]))(np.zeros(5)).shape == (5, 1, 2)
 
 
 @pytest.mark.parametrize(
@@ -316,3 +320,18 @@ def test_puma_full_transform_orientation():
     r13 = -c[0] * (c23 * c[3] * s_[4] + s23 * c[4]) - s_[0] * s_[3] * s_[4]
     assert sym_equal(S[2, 2], r33) and sym_equal(S[0, 2], r13)
     assert S[2, 2] == sp.expand(r33)  # folded to the textbook's c23 and s23
+
+
+def test_half_angles_come_back_as_rodrigues():
+    # the quaternion matrix with q = (cos θ/2, u sin θ/2) simplifies to Rodrigues' terms in θ
+    q0, q1, q2, q3 = sp.cos(t / 2), kx * sp.sin(t / 2), ky * sp.sin(t / 2), kz * sp.sin(t / 2)
+    R = sp.Matrix([
+        [1 - 2 * (q2**2 + q3**2), 2 * (q1 * q2 - q0 * q3), 2 * (q0 * q2 + q1 * q3)],
+        [2 * (q1 * q2 + q0 * q3), 1 - 2 * (q1**2 + q3**2), 2 * (q2 * q3 - q0 * q1)],
+        [2 * (q1 * q3 - q0 * q2), 2 * (q0 * q1 + q2 * q3), 1 - 2 * (q1**2 + q2**2)],
+    ])
+    S = simplify_rotation(R, unit=[kx, ky, kz])
+    assert not S.has(t / 2)
+    c, s_ = sp.cos(t), sp.sin(t)
+    assert sp.expand(S[0, 1] - (kx * ky * (1 - c) - kz * s_)) == 0  # eq. 4.64, typed
+    assert sp.expand(S[2, 2] - (kz**2 * (1 - c) + c).subs(kz**2, 1 - kx**2 - ky**2)) == 0
