@@ -273,17 +273,16 @@ def dual_quat_sclerp(dq0, dq1, t):
     v = qr[..., 1:]
     s = np.linalg.norm(v, axis=-1)
     h = np.arctan2(s, qr[..., 0])  # θ/2
-    ta = np.asarray(tt, dtype=np.float64)
     sinc_h = np.sinc(h / np.pi)  # sin h / h, > 0 for h in [0, π/2]
-    r_half = ta * np.sinc(ta * h / np.pi) / sinc_h  # sin(t h) / sin h
-    r1_ = 2.0 * ta * np.sinc(2.0 * ta * h / np.pi) / sinc_h  # sin(2 t h) / sin h
+    r_half = tt * np.sinc(tt * h / np.pi) / sinc_h  # sin(t h) / sin h
+    r1_ = 2.0 * tt * np.sinc(2.0 * tt * h / np.pi) / sinc_h  # sin(2 t h) / sin h
     cos_h = np.cos(h)
-    alpha = np.sin(ta * h) ** 2 + 0.5 * r1_ * cos_h
+    alpha = np.sin(tt * h) ** 2 + 0.5 * r1_ * cos_h
     beta_s = r_half**2 * cos_h - 0.5 * r1_
     vp = np.einsum("...i,...i->...", v, p)
     safe = np.where(s > 0.0, s, 1.0)
     p_perp = p - np.where((s > 0.0)[..., None], v * (vp / safe**2)[..., None], 0.0)
-    pt = ta[..., None] * p + (alpha - ta)[..., None] * p_perp + beta_s[..., None] * np.cross(v, p)
-    qt = np.concatenate([np.cos(ta * h)[..., None], r_half[..., None] * v], axis=-1)
+    pt = tt[..., None] * p + (alpha - tt)[..., None] * p_perp + beta_s[..., None] * np.cross(v, p)
+    qt = np.concatenate([np.cos(tt * h)[..., None], r_half[..., None] * v], axis=-1)
     step = np.concatenate([qt, 0.5 * quat_multiply(_pure(pt), qt)], axis=-1)
     return dual_quat_multiply(a, step)

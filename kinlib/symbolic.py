@@ -41,13 +41,10 @@ import sympy as sp
 
 from ._trig_fold import combine_sums as _combine_sums
 from ._trig_fold import lower_half_angles as _lower_half_angles
+from ._validate import as_array, fmt_index
 from .errors import KinlibError
 
 __all__ = ["trig_reduce", "simplify_rotation", "sym_equal", "lambdify_batched"]
-
-
-def _is_sym_expr(e) -> bool:
-    return isinstance(e, sp.Basic)
 
 
 def _as_sympy(expr, name: str = "expr"):
@@ -129,12 +126,12 @@ def _reduce_poly(e: sp.Expr, rules: dict[sp.Symbol, sp.Expr]) -> sp.Expr:
     return e
 
 
-def _reduce_scalar(e: sp.Expr, groups, rescale: bool = True) -> sp.Expr:
+def _reduce_scalar(e: sp.Expr, groups) -> sp.Expr:
     if not e.free_symbols:
         return sp.nsimplify(e) if e.is_Float else sp.expand(e)
     e = e.rewrite(sp.tan, sp.sin) if e.has(sp.tan, sp.cot) else e
     e = e.rewrite(sp.cot, sp.cos) if e.has(sp.cot) else e
-    scales = {s: k for s, k in _angle_scales(e).items() if k > 1} if rescale else {}
+    scales = {s: k for s, k in _angle_scales(e).items() if k > 1}
     fine = {s: sp.Dummy(f"{s.name}_{k}", real=True) for s, k in scales.items()}
     e = e.xreplace({s: k * fine[s] for s, k in scales.items()}) if scales else e
     num, den = sp.fraction(sp.together(sp.expand_trig(e)))
@@ -319,8 +316,6 @@ def lambdify_batched(args, expr):
             raise KinlibError(
                 f"expected {len(specs)} input(s) ({', '.join(names)}), got {len(values)}"
             )
-        from ._validate import as_array
-
         cols, batches = [], []
         for (kind, s), v, name in zip(specs, values, names, strict=False):
             if kind == "scalar":
@@ -349,8 +344,6 @@ def lambdify_batched(args, expr):
             out[..., j] = np.broadcast_to(a.astype(np.float64, copy=False), batch)
         bad = ~np.isfinite(out).all(axis=-1)
         if np.any(bad):
-            from ._validate import fmt_index
-
             j = int(np.argwhere(~np.isfinite(out.reshape(-1, len(entries))))[0][1])
             raise KinlibError(
                 f"expr: entry {j} ({entries[j]}) is not finite at input"
