@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from reference import random_unit_vectors
 from scipy.spatial.transform import Rotation, Slerp
 
 import kinlib as kl
@@ -92,8 +93,7 @@ def rotation_angle_between(p, q):
 
 
 def random_unit_quaternions(n, seed):
-    q = np.random.default_rng(seed).normal(size=(n, 4))
-    return q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return random_unit_vectors(n, np.random.default_rng(seed), dim=4)
 
 
 # --------------------------------------------------------------------------- strategies
