@@ -6,6 +6,7 @@ visualizer's own helpers; what the server really holds is read back from its sce
 """
 
 import base64
+import html
 import os
 import re
 import uuid
@@ -17,7 +18,7 @@ import umsgpack
 from kinlib import KinlibError, load_urdf, matrix_from_quat, rotx, transform
 from kinlib.holonomic import base_pose
 from kinlib.robots import autorob_test_robot, puma560
-from kinlib.viz import RobotVisualizer
+from kinlib.viz import STATIC_ENV, RobotVisualizer
 
 ZMQ_ENV, WEB_ENV = "KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL"
 EY = np.array([0.0, 1.0, 0.0])
@@ -62,11 +63,16 @@ ROBOTS = {"puma560": puma560, "autorob": autorob_test_robot,
           "shapes": lambda: load_urdf(SHAPES_URDF)}
 
 
-def server_commands(viz):
-    """Every command the server holds, decoded: list of dicts with 'type' and 'path'."""
+def page_commands(page):
+    """Every command a static meshcat page replays, decoded: dicts with 'type' and 'path'."""
     blobs = re.findall(r"fetch\(\"data:application/octet-binary;base64,([A-Za-z0-9+/=]+)\"\)",
-                       viz.static_html())
+                       page)
     return [umsgpack.unpackb(base64.b64decode(b)) for b in blobs]
+
+
+def server_commands(viz):
+    """Every command the server holds (see :func:`page_commands`)."""
+    return page_commands(viz.static_html())
 
 
 def column_major(matrix):
@@ -294,6 +300,35 @@ def test_static_html_is_self_contained(make_viz, tmp_path):
     assert (tmp_path / "puma.html").read_text(encoding="utf-8") == html
     assert viz.url() == os.environ[WEB_ENV]
     assert viz.url() in viz.jupyter_cell().data
+
+
+def test_snapshot_embeds_the_current_scene(make_viz, monkeypatch):
+    viz = make_viz(puma560())
+    viz.set_configuration(viz.robot.poses["ready"])
+    cell = viz.snapshot(height=321)
+    m = re.fullmatch(r'<div class="kinlib-scene"><iframe srcdoc="([^"]*)" style="width: 100%; '
+                     r'height: 321px; border: none"></iframe></div>', cell.data)
+    assert m, cell.data[:300]
+    page = html.unescape(m.group(1))
+    assert "MeshCat.Viewer" in page and viz.url() not in page
+    ours = {c["path"].lower(): column_major(c["matrix"]) for c in page_commands(page)
+            if c["type"] == "set_transform" and f"/{viz.prefix}/" in c["path"].lower()}
+    expected = viz.scene_transforms(viz.robot.poses["ready"])
+    assert set(ours) == set(expected)
+    for path, M in expected.items():
+        np.testing.assert_allclose(ours[path], M, atol=1e-12)
+
+    monkeypatch.delenv(STATIC_ENV, raising=False)
+    assert viz.url() in viz.jupyter_cell(height=300).data  # live
+    monkeypatch.setenv(STATIC_ENV, "1")
+    static = viz.jupyter_cell(height=300).data
+    assert static.startswith('<div class="kinlib-scene"><iframe srcdoc=')
+    assert viz.url() not in static
+    for bad in (0, -5, 2.5, "400", True, None):
+        with pytest.raises(KinlibError, match="height"):
+            viz.snapshot(height=bad)
+        with pytest.raises(KinlibError, match="height"):
+            viz.jupyter_cell(height=bad)
 
 
 def test_same_prefix_replaces_the_robot(make_viz):

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._viewer_server import own_server
 from ..errors import KinlibError
 
 with warnings.catch_warnings():
@@ -87,14 +88,15 @@ def _probe(zmq_url: str, timeout: float) -> str:
 
 
 def connect(zmq_url=None, timeout: float = 10.0):
-    """A ``meshcat.Visualizer``: at ``zmq_url``, else ``$KINLIB_MESHCAT_ZMQ_URL``, else new.
-
-    Without either, meshcat starts its own server process (it ends with Python).
+    """A ``meshcat.Visualizer``: at ``zmq_url``, else ``$KINLIB_MESHCAT_ZMQ_URL``, else
+    this process's own server (:func:`kinlib._viewer_server.own_server`: started on first
+    use, shared by all visualizers of the process, ended with the process even if it is
+    killed).
     """
     if zmq_url is None:
         zmq_url = os.environ.get(ZMQ_ENV) or None
     if zmq_url is None:
-        return meshcat.Visualizer()
+        zmq_url = own_server().zmq_url
     if not isinstance(zmq_url, str):
         raise KinlibError(f"zmq_url: expected a string such as 'tcp://127.0.0.1:6000', "
                           f"got {zmq_url!r}")

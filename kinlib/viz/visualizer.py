@@ -17,6 +17,9 @@ meshcat (three.js) cylinders lie along their local **y** axis; see
 
 from __future__ import annotations
 
+import html
+import os
+
 import numpy as np
 
 from .._validate import as_array
@@ -28,7 +31,10 @@ from . import _scene
 from ._geometry import axis_transforms, decompose, segment_transforms
 from ._scene import mg
 
-__all__ = ["RobotVisualizer", "REVOLUTE_COLOR", "PRISMATIC_COLOR", "LINK_COLOR"]
+__all__ = ["RobotVisualizer", "REVOLUTE_COLOR", "PRISMATIC_COLOR", "LINK_COLOR", "STATIC_ENV"]
+
+#: set to "1" to make :meth:`RobotVisualizer.jupyter_cell` embed static snapshots
+STATIC_ENV = "KINLIB_STATIC_SCENES"
 
 LINK_COLOR = 0x3B7DD8
 REVOLUTE_COLOR = 0xE8A317
@@ -39,6 +45,13 @@ _ROTX_90 = np.array([[1.0, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]])
 
 def _clean(name: str) -> str:
     return str(name).replace("/", "_") or "_"
+
+
+def _height(height) -> int:
+    """A cell height in pixels: a positive whole number."""
+    if isinstance(height, bool) or not isinstance(height, int | np.integer) or height <= 0:
+        raise KinlibError(f"height: expected a positive whole number of pixels, got {height!r}")
+    return int(height)
 
 
 def _robot_reach(robot: Robot, q0: np.ndarray) -> float:
@@ -101,8 +114,9 @@ class RobotVisualizer:
         self.color = _scene.color_int(color)
         lim = robot.limits
         q0 = np.clip(np.zeros(robot.dof), lim[:, 0], lim[:, 1])
+        reach = _robot_reach(robot, q0)
         if link_radius is None:
-            link_radius = 0.02 * _robot_reach(robot, q0)
+            link_radius = 0.02 * reach
         r = as_array(link_radius, "link_radius")
         if r.ndim or r <= 0:
             raise KinlibError(f"link_radius: expected one positive number, got {link_radius!r}")
@@ -116,6 +130,8 @@ class RobotVisualizer:
         self.base = np.eye(4)
         self.q = q0
         self.set_configuration(q0)
+        # frame the robot: the camera looks at the origin from the front right, above
+        self.set_camera_position(max(reach, 0.1) * np.array([0.9, -1.1, 0.7]))
 
     # -- drawing --------------------------------------------------------------------------
     def _path(self, group: str, name: str) -> str:
@@ -269,8 +285,30 @@ class RobotVisualizer:
         return self.vis.url()
 
     def jupyter_cell(self, height: int = 400):
-        """The viewer embedded in a notebook cell (make it the cell's last expression)."""
-        return self.vis.jupyter_cell(height=height)
+        """The viewer embedded in a notebook cell (make it the cell's last expression).
+
+        Live: an iframe showing the server's viewer, which follows every later change.
+        When the environment variable ``KINLIB_STATIC_SCENES`` is ``1`` (set it when a
+        notebook is executed for export, e.g. to HTML), this returns :meth:`snapshot`
+        instead, so the exported page shows the scene without a server.
+        """
+        h = _height(height)
+        if os.environ.get(STATIC_ENV) == "1":
+            return self.snapshot(h)
+        return self.vis.jupyter_cell(height=h)
+
+    def snapshot(self, height: int = 400):
+        """The scene as it is now, self-contained: an ``IPython.display.HTML`` iframe.
+
+        The iframe holds :meth:`static_html` (three.js and the scene, animations
+        included; about 1 MB), so it renders in an exported notebook or a static web
+        page with no server and no network. Later changes to the scene do not reach it.
+        """
+        from IPython.display import HTML
+
+        page = html.escape(self.static_html(), quote=True)
+        return HTML(f'<div class="kinlib-scene"><iframe srcdoc="{page}" style="width: 100%; '
+                    f'height: {_height(height)}px; border: none"></iframe></div>')
 
     def delete(self) -> None:
         """Remove this robot from the scene."""
