@@ -11,7 +11,8 @@ import sympy as sp
 from .errors import KinlibError
 
 __all__ = [
-    "axis_angle", "axis_rotation", "dh", "matrix_3x3", "scalar", "skew", "transform", "vector"
+    "axis_angle", "axis_rotation", "dh", "matrix_3x3", "scalar", "skew", "transform", "vector",
+    "vee",
 ]
 
 
@@ -59,6 +60,18 @@ def axis_rotation(axis: int, theta) -> sp.Matrix:
 def skew(v) -> sp.Matrix:
     x, y, z = vector(v, "v")
     return sp.Matrix([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+
+
+def vee(S) -> sp.Matrix:
+    """The 3×1 vector of a symbolic skew-symmetric matrix; an error unless S = −Sᵀ provably."""
+    from .symbolic import trig_reduce
+
+    M = matrix_3x3(S, "S")
+    for e in M + M.T:
+        if sp.expand(e) != 0 and trig_reduce(e) != 0 and sp.simplify(e) != 0:
+            raise KinlibError(f"S: expected a skew-symmetric matrix (S = -Sᵀ), but an entry "
+                              f"of S + Sᵀ is {e}, which does not simplify to 0")
+    return sp.Matrix([M[2, 1], M[0, 2], M[1, 0]])
 
 
 def axis_angle(axis, angle) -> sp.Matrix:

@@ -7,6 +7,8 @@ where, instead of failing deep inside numpy.
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from .errors import KinlibError
@@ -151,8 +153,15 @@ def broadcast(*arrays_with_tails: tuple[np.ndarray, int, str]) -> tuple[int, ...
         raise KinlibError(f"batch shapes do not broadcast: {described}") from None
 
 
+def _sympy_basic(x) -> bool:
+    """A sympy object whose class lives in no sympy module (e.g. an applied undefined
+    function ``Function("theta")(t)``, whose class is made on the fly)."""
+    sympy = sys.modules.get("sympy")
+    return sympy is not None and isinstance(x, sympy.Basic)
+
+
 def _is_sym(x) -> bool:
-    if type(x).__module__.startswith("sympy"):
+    if (type(x).__module__ or "").startswith("sympy") or _sympy_basic(x):
         return True
     if isinstance(x, list | tuple):
         return any(_is_sym(e) for e in x)

@@ -111,6 +111,10 @@ def skew(v):
     return S
 
 
+def _is_sympy_matrix(S) -> bool:
+    return (type(S).__module__ or "").startswith("sympy")
+
+
 def vee(S, tol: float = 1e-9):
     r"""The vector of a skew-symmetric matrix: the inverse of :func:`skew`.
 
@@ -119,7 +123,18 @@ def vee(S, tol: float = 1e-9):
 
     >>> vee(skew([1.0, 2.0, 3.0]))
     array([1., 2., 3.])
+
+    Given a sympy matrix it returns a 3×1 ``sympy.Matrix`` (after proving S = −Sᵀ):
+
+    >>> import sympy as sp
+    >>> w = sp.symbols("w_x w_y w_z")
+    >>> vee(skew(w)).T
+    Matrix([[w_x, w_y, w_z]])
     """
+    if is_symbolic(S) or _is_sympy_matrix(S):
+        from . import _sym
+
+        return _sym.vee(S)
     a = as_array(S, "S", (3, 3))
     tol = as_tol(tol)
     asym = np.abs(a + np.swapaxes(a, -1, -2)).max(axis=(-2, -1))

@@ -264,3 +264,31 @@ def test_symbolic_input_does_import_sympy_lazily():
         [sys.executable, "-c", script], capture_output=True, text=True, check=True, timeout=60
     )
     assert out.stdout.strip() == "True"
+
+
+def test_functions_of_time_are_symbolic_input():
+    """``Function("theta")(t)`` has a class made on the fly (``__module__`` is None)."""
+    t = sp.symbols("t", real=True)
+    th = sp.Function("theta")(t)
+    R = kl.rotz(th)
+    assert isinstance(R, sp.Matrix) and R[0, 1] == -sp.sin(th)
+    E = kl.matrix_from_euler([th, 0, th**2], "ZYX")
+    assert E.has(th) and isinstance(E, sp.Matrix)
+    # Ṙ Rᵀ for a rotation about z is S(θ̇ z): vee by hand (the entries) and by kl.vee
+    W = (R.diff(t) * R.T).applyfunc(sp.simplify)
+    assert (W[1, 0], W[0, 2], W[2, 1]) == (th.diff(t), 0, 0)
+    assert kl.vee(W) == sp.Matrix([0, 0, th.diff(t)])
+
+
+def test_symbolic_vee_inverts_skew_and_rejects_non_skew():
+    a, b, c = sp.symbols("a b c", real=True)
+    assert kl.vee(kl.skew([a, b, c])) == sp.Matrix([a, b, c])
+    al = sp.symbols("alpha", real=True)
+    R = kl.rotx(al)
+    # R S(v) Rᵀ is skew only after cos² + sin² = 1: vee must still prove it
+    S = (R * kl.skew([a, b, c]) * R.T)
+    assert sp.simplify(kl.vee(S) - R * sp.Matrix([a, b, c])) == sp.zeros(3, 1)
+    with pytest.raises(kl.KinlibError, match="skew-symmetric"):
+        kl.vee(sp.Matrix([[0, a, 0], [a, 0, 0], [0, 0, 0]]))
+    with pytest.raises(kl.KinlibError, match="3×3"):
+        kl.vee(sp.Matrix([[0, a], [-a, 0]]))
