@@ -6,14 +6,17 @@ from pathlib import Path
 
 import pytest
 
-NOTEBOOKS = sorted((Path(__file__).parent.parent / "notebooks").glob("*.ipynb"))
+ROOT = Path(__file__).parent.parent
+NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+ASSIGNMENTS = sorted((ROOT / "assignments").glob("*/*.ipynb"))
 
 
 def test_there_are_notebooks():
     assert NOTEBOOKS, "notebooks/ holds the course"
 
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+@pytest.mark.parametrize("path", NOTEBOOKS + ASSIGNMENTS,
+                         ids=lambda p: f"{p.parent.name}/{p.name}")
 def test_committed_without_outputs(path):
     nb = json.loads(path.read_text())
     for i, cell in enumerate(nb["cells"]):

@@ -1,0 +1,199 @@
+"""The grader's side of the student's process: start it, limit it, talk to it, kill it.
+
+The student's code runs in ``python -I .../_worker.py`` (see there), a child in
+its own process group and temporary working directory, with
+
+- a memory limit (``RLIMIT_AS``), a CPU-time backstop (``RLIMIT_CPU``), a file-size limit
+  (``RLIMIT_FSIZE``) and no core files;
+- one thread for the numeric libraries, ``MPLBACKEND=Agg``, ``HOME`` in the temp directory;
+- ``PR_SET_PDEATHSIG`` (Linux): it dies with the grader.
+
+Every read from it has a deadline; a process that overstays one, or dies, is killed with
+its whole process group, and the caller starts a new one. Replies are JSON lines of at most
+:data:`kinlib.grade._wire.MAX_LINE` bytes.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import selectors
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from .._viewer_server import _die_with
+from ._wire import MAX_LINE, WireError, dumps, loads
+
+__all__ = ["Worker", "WorkerDied", "WorkerTimeout", "BLOCKED"]
+
+#: modules a submission may not import: kinlib and the peer libraries that would do the work
+BLOCKED = ("kinlib", "scipy", "pytransform3d", "roboticstoolbox", "spatialmath",
+           "modern_robotics", "transforms3d", "pinocchio", "pin")
+
+_THREAD_VARS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
+                "NUMBA_NUM_THREADS", "NUMEXPR_NUM_THREADS")
+
+
+class WorkerDied(RuntimeError):
+    """The student's process ended (or sent something unreadable and was killed)."""
+
+
+class WorkerTimeout(RuntimeError):
+    """The student's process did not answer in time (it has been killed)."""
+
+
+def _limits(memory_mb: int, cpu_s: int, parent: int):
+    die = _die_with(parent)
+
+    def setup() -> None:
+        die()
+        mem = memory_mb * 1024 * 1024
+        resource.setrlimit(resource.RLIMIT_AS, (mem, mem))
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu_s, cpu_s + 5))
+        resource.setrlimit(resource.RLIMIT_FSIZE, (64 * 1024 * 1024,) * 2)
+        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    return setup
+
+
+class Worker:
+    """One student process. Use :meth:`request` / :meth:`receive`; :meth:`kill` always."""
+
+    def __init__(self, *, memory_mb: int = 4096, cpu_s: int = 600, blocked=BLOCKED):
+        self.dir = tempfile.mkdtemp(prefix="kinlib-grade-")
+        env = {"PATH": os.environ.get("PATH", "/usr/bin:/bin"), "HOME": self.dir,
+               "LANG": "C.UTF-8", "MPLBACKEND": "Agg", "MPLCONFIGDIR": self.dir,
+               "PYTHONHASHSEED": "0", "PYTHONDONTWRITEBYTECODE": "1",
+               **{v: "1" for v in _THREAD_VARS}}
+        to_child_r, self._to_child = os.pipe()
+        self._from_child, from_child_w = os.pipe()
+        try:
+            self.proc = subprocess.Popen(
+                [sys.executable, "-I", str(Path(__file__).with_name("_worker.py")),
+                 str(to_child_r), str(from_child_w), ",".join(blocked)],
+                pass_fds=(to_child_r, from_child_w), cwd=self.dir, env=env,
+                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                start_new_session=True, preexec_fn=_limits(memory_mb, cpu_s, os.getpid()))
+        except BaseException:
+            for fd in (to_child_r, from_child_w, self._to_child, self._from_child):
+                os.close(fd)
+            shutil.rmtree(self.dir, ignore_errors=True)
+            raise
+        os.close(to_child_r)
+        os.close(from_child_w)
+        os.set_blocking(self._from_child, False)
+        self._buffer = bytearray()
+        self._selector = selectors.DefaultSelector()
+        self._selector.register(self._from_child, selectors.EVENT_READ)
+        self.alive = True
+
+    # -- talking ----------------------------------------------------------------------------
+    def request(self, message: dict) -> None:
+        """Send one request (``WorkerDied`` if the process is gone)."""
+        if not self.alive:
+            raise WorkerDied("the process is not running")
+        data = dumps(message)
+        try:
+            view = memoryview(data)
+            while view:
+                n = os.write(self._to_child, view)
+                view = view[n:]
+        except OSError:  # BrokenPipeError: it has ended
+            why = self._death()
+            self.kill()
+            raise WorkerDied(why) from None
+
+    def receive(self, timeout: float) -> dict:
+        """The next reply, waiting at most ``timeout`` seconds.
+
+        Raises :class:`WorkerTimeout` (process killed), :class:`WorkerDied` (process ended,
+        or sent a line that is too long or not a JSON object: then it is killed).
+        """
+        deadline = time.monotonic() + timeout
+        while True:
+            cut = self._buffer.find(b"\n")
+            if cut >= 0:
+                line = bytes(self._buffer[:cut])
+                del self._buffer[:cut + 1]
+                try:
+                    return loads(line)
+                except WireError as exc:
+                    self.kill()
+                    raise WorkerDied(f"it sent an unreadable message ({exc})") from None
+            if len(self._buffer) > MAX_LINE:
+                self.kill()
+                raise WorkerDied(f"it sent a message longer than {MAX_LINE} bytes")
+            left = deadline - time.monotonic()
+            if left <= 0:
+                self.kill()
+                raise WorkerTimeout(f"no answer within {timeout:g} s")
+            if not self._selector.select(left):
+                continue
+            try:
+                chunk = os.read(self._from_child, 1 << 20)
+            except BlockingIOError:
+                continue
+            if not chunk:
+                why = self._death()
+                self.kill()
+                raise WorkerDied(why)
+            self._buffer += chunk
+
+    def _death(self) -> str:
+        try:
+            code = self.proc.wait(timeout=2.0)
+        except subprocess.TimeoutExpired:
+            return "it stopped answering"
+        if code < 0:
+            name = signal.Signals(-code).name if -code in signal.Signals._value2member_map_ \
+                else str(-code)
+            hint = {"SIGKILL": " (killed: perhaps the memory limit)",
+                    "SIGXCPU": " (the CPU-time limit)", "SIGXFSZ": " (the file-size limit)",
+                    "SIGSEGV": " (a crash)"}.get(name, "")
+            return f"the process was ended by {name}{hint}"
+        return f"the process exited with code {code}"
+
+    def output(self, limit: int = 2000) -> str:
+        """The start of what the student's code printed (stdout and stderr)."""
+        try:
+            with open(os.path.join(self.dir, "output.txt"), "rb") as fh:
+                return fh.read(limit).decode("utf-8", "replace")
+        except OSError:
+            return ""
+
+    # -- ending -----------------------------------------------------------------------------
+    def kill(self) -> None:
+        """End the process group (SIGKILL), reap it, close the pipes. Idempotent."""
+        if self.alive:
+            self.alive = False
+            try:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+            try:
+                self.proc.wait(timeout=10.0)
+            except subprocess.TimeoutExpired:
+                pass
+
+    def close(self) -> None:
+        """Kill the process and remove its working directory."""
+        self.kill()
+        if self._selector is not None:
+            self._selector.close()
+            self._selector = None
+            for fd in (self._to_child, self._from_child):
+                try:
+                    os.close(fd)
+                except OSError:
+                    pass
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def __enter__(self) -> Worker:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()

@@ -1,0 +1,196 @@
+"""Assignment 01 · rotations: elementary rotations, ZYX Euler angles both ways (with gimbal
+lock), axis-angle both ways, the quaternion product and quaternion → matrix."""
+
+from __future__ import annotations
+
+import numpy as np
+
+import kinlib as kl
+
+from .._checks import RIGHT, Assignment, Check, Mistake, Verdict, as_numeric, close, fmt
+from .common import (DEGREES, TRANSPOSED, random_quats, random_rotations, random_unit_vectors,
+                     wxyz_read_as_xyzw)
+
+ELEMENTARY = {"rotx": kl.rotx, "roty": kl.roty, "rotz": kl.rotz}
+SIN_SIGN = ("the sign of sin is on the wrong side: you returned the transpose, the rotation "
+            "by −θ. The column j of R is where the unit vector j goes: for rotz, x goes to "
+            "(cos θ, sin θ, 0)")
+
+
+def _angles(rng, n):
+    fixed = [0.0, np.pi / 2, -np.pi / 2, np.pi, 0.1, -2.5, 3.0]
+    return [(a,) for a in fixed] + [(float(a),) for a in rng.uniform(-np.pi, np.pi, n)]
+
+
+def _elementary(name: str) -> Check:
+    ref = ELEMENTARY[name]
+    others = [Mistake("axis", f"this is {other}, not {name}: check which axis stays fixed "
+                              f"(its row and column are 0, 0, 1)", f)
+              for other, f in ELEMENTARY.items() if other != name]
+    return Check(name, 2, f"rotation about {name[-1]} by θ", lambda rng: _angles(rng, 23),
+                 ref, [Mistake("transposed", SIN_SIGN, lambda t: ref(t).T),
+                       DEGREES.of(lambda t: ref(np.deg2rad(t))), *others])
+
+
+def _zyx(a, b, g):
+    return kl.matrix_from_euler([a, b, g], "ZYX")
+
+
+def _euler_cases(rng):
+    fixed = [(0.0, 0.0, 0.0), (0.3, 0.2, 0.1), (np.pi / 2, 0.0, 0.0), (0.0, np.pi / 2, 0.0),
+             (0.0, 0.0, np.pi / 2), (1.0, -np.pi / 2, 0.5), (-2.0, 1.2, 3.0)]
+    rand = rng.uniform([-np.pi, -np.pi / 2, -np.pi], [np.pi, np.pi / 2, np.pi], (53, 3))
+    return fixed + [tuple(map(float, r)) for r in rand]
+
+
+def _sequence_mistakes():
+    out = [Mistake("extrinsic", "you multiplied in the fixed-axes (extrinsic) order "
+                                "Rx(γ) Ry(β) Rz(α): Euler ZYX turns about the moving axes, so "
+                                "R = Rz(α) Ry(β) Rx(γ), the first rotation leftmost",
+                   lambda a, b, g: kl.rotx(g) @ kl.roty(b) @ kl.rotz(a))]
+    for seq in ("XYZ", "ZXY", "YXZ", "YZX", "XZY", "ZYZ", "ZXZ"):
+        out.append(Mistake("sequence", f"this is the {seq} sequence, not ZYX: α turns about "
+                                       "z, then β about the new y, then γ about the newest x",
+                           lambda a, b, g, s=seq: kl.matrix_from_euler([a, b, g], s)))
+    return out
+
+
+def _judge_inverse_euler():
+    def judge(args, got):
+        (R_in,) = args
+        a, bad = as_numeric(got, (3,), "three angles (alpha, beta, gamma)")
+        if a is None:
+            if bad.key == "nan" and kl.euler_gimbal_lock(R_in, "ZYX", 1e-6):
+                return Verdict(False, "gimbal", "NaN at gimbal lock (β = ±90°, cos β = 0): "
+                                                "there only α ± γ is determined; set α = 0 "
+                                                "and get γ from the entries that remain")
+            return bad
+        if close(_zyx(*a), R_in, 1e-6):
+            return RIGHT
+        if close(_zyx(*np.deg2rad(a)), R_in, 1e-6):
+            return Verdict(False, "degrees", DEGREES.message)
+        if close(_zyx(*a[::-1]), R_in, 1e-6):
+            return Verdict(False, "order", "your angles come in the wrong order: return "
+                                           "(alpha, beta, gamma) with R = Rz(α) Ry(β) Rx(γ)")
+        if close(kl.rotx(a[0]) @ kl.roty(a[1]) @ kl.rotz(a[2]), R_in, 1e-6):
+            return Verdict(False, "extrinsic", "your angles rebuild R as Rx Ry Rz (fixed "
+                                               "axes); Euler ZYX means R = Rz(α) Ry(β) Rx(γ)")
+        if kl.euler_gimbal_lock(R_in, "ZYX", 1e-6):
+            return Verdict(False, "gimbal", "wrong at gimbal lock (β = ±90°): with α = 0, "
+                                            "Rz(0) Ry(±90°) Rx(γ) must equal R; solve γ from "
+                                            "the entries that do not vanish")
+        err = float(np.abs(_zyx(*a) - R_in).max())
+        return Verdict(False, "wrong", f"Rz(α) Ry(β) Rx(γ) of your angles misses R by up to "
+                                       f"{err:.3g}", kl.euler_from_matrix(R_in, "ZYX"))
+    return judge
+
+
+def _inverse_euler_cases(rng):
+    cases = [(_zyx(*e),) for e in _euler_cases(rng)[:40]]
+    for sign in (1.0, -1.0):  # gimbal lock, β = ±90° with exact zeros, several α, γ
+        Ry = np.array([[0.0, 0.0, sign], [0.0, 1.0, 0.0], [-sign, 0.0, 0.0]])
+        for a, g in rng.uniform(-np.pi, np.pi, (8, 2)):
+            cases.append((kl.rotz(a) @ Ry @ kl.rotx(g),))
+    cases += [(R,) for R in random_rotations(rng, 10)]
+    return cases
+
+
+def _aa_cases(rng):
+    axes = random_unit_vectors(rng, 34)
+    fixed = [([0.0, 0.0, 1.0], np.pi / 2), ([1.0, 0.0, 0.0], 0.0), ([0.0, 1.0, 0.0], np.pi),
+             ([0.6, 0.8, 0.0], -1.0)]
+    return [(np.array(k), a) for k, a in fixed] + \
+        [(k, float(t)) for k, t in zip(axes, rng.uniform(-np.pi, np.pi, 34), strict=True)]
+
+
+def _judge_inverse_aa(args, got):
+    (R_in,) = args
+    if not isinstance(got, tuple | list) or len(got) != 2:
+        return Verdict(False, "type", f"returned {fmt(got, 80)}; expected a pair "
+                                      "(axis, angle): axis a unit 3-vector, angle in [0, π]")
+    k, bad = as_numeric(got[0], (3,), "a unit axis")
+    if k is None:
+        return bad
+    t, bad = as_numeric(got[1], ())
+    if t is None:
+        return bad
+    t = float(t)
+    if abs(np.linalg.norm(k) - 1.0) > 1e-6:
+        return Verdict(False, "unit", f"the axis has length {np.linalg.norm(k):.4g}; it must "
+                                      "be a unit vector (at θ = 0 any unit axis will do)")
+    if t > np.pi + 1e-6 and close(kl.matrix_from_axis_angle(k, np.deg2rad(t)), R_in, 1e-6):
+        return Verdict(False, "degrees", DEGREES.message)
+    if not -1e-9 <= t <= np.pi + 1e-9:
+        return Verdict(False, "range", f"angle {t:.4g} is outside [0, π]: arccos((tr R − 1)/2) "
+                                       "gives the angle in [0, π]")
+    rebuilt = kl.matrix_from_axis_angle(k, t)
+    if close(rebuilt, R_in, 1e-6):
+        return RIGHT
+    if close(rebuilt.T, R_in, 1e-6):
+        return Verdict(False, "axis sign", "your axis points the wrong way (you get Rᵀ back): "
+                                           "the skew part (R − Rᵀ)/2 is sin θ [k]×, so "
+                                           "k = (R32 − R23, R13 − R31, R21 − R12) / (2 sin θ)")
+    near_pi = abs(np.trace(R_in) + 1.0) < 1e-6
+    hint = (" Near θ = π, sin θ ≈ 0: get k from the symmetric part, R + I = 2 k kᵀ"
+            if near_pi else "")
+    return Verdict(False, "wrong", "Rodrigues' matrix of your (axis, angle) is not R." + hint,
+                   kl.axis_angle_from_matrix(R_in))
+
+
+def _aa_inverse_cases(rng):
+    out = [(kl.matrix_from_axis_angle(k, t),) for k, t in _aa_cases(rng)[4:34]]
+    for k in random_unit_vectors(rng, 8):  # θ = π exactly: sin θ = 0
+        out.append((kl.matrix_from_axis_angle(k, np.pi),))
+    out += [(np.eye(3),), (kl.rotz(1e-9),), (kl.rotx(np.pi),)]
+    out += [(R,) for R in random_rotations(rng, 9)]
+    return out
+
+
+def _quat_pairs(rng):
+    qs = random_quats(rng, 80)
+    fixed = [([1.0, 0, 0, 0], [0, 1.0, 0, 0]), ([0, 1.0, 0, 0], [0, 0, 1.0, 0]),
+             ([0, 0, 1.0, 0], [0, 1.0, 0, 0])]
+    return [(np.array(p), np.array(q)) for p, q in fixed] + \
+        [(qs[i], qs[i + 1]) for i in range(0, 80, 2)]
+
+
+def assignment() -> Assignment:
+    mult = kl.quat_multiply
+    checks = [_elementary("rotx"), _elementary("roty"), _elementary("rotz"),
+              Check("euler_zyx_to_matrix", 4, "R = Rz(α) Ry(β) Rx(γ)", _euler_cases, _zyx,
+                    [TRANSPOSED.of(lambda a, b, g: _zyx(a, b, g).T),
+                     DEGREES.of(lambda a, b, g: _zyx(*np.deg2rad([a, b, g]))),
+                     *_sequence_mistakes()]),
+              Check("matrix_to_euler_zyx", 6, "ZYX angles of R, also at gimbal lock",
+                    _inverse_euler_cases, judge=_judge_inverse_euler()),
+              Check("axis_angle_to_matrix", 4, "Rodrigues' formula", _aa_cases,
+                    kl.matrix_from_axis_angle,
+                    [TRANSPOSED.of(lambda k, t: kl.matrix_from_axis_angle(k, t).T),
+                     DEGREES.of(lambda k, t: kl.matrix_from_axis_angle(k, np.deg2rad(t))),
+                     Mistake("rodrigues", "the (1 − cos θ) k kᵀ term is missing or wrong: "
+                                          "R = cos θ I + sin θ [k]× + (1 − cos θ) k kᵀ",
+                             lambda k, t: np.cos(t) * np.eye(3) + np.sin(t) * kl.skew(k))]),
+              Check("matrix_to_axis_angle", 6, "axis and angle of R, also at θ = 0 and π",
+                    _aa_inverse_cases, judge=_judge_inverse_aa),
+              Check("quat_multiply", 4, "Hamilton product p ⊗ q, [w, x, y, z]", _quat_pairs,
+                    mult,
+                    [Mistake("order", "this is q ⊗ p: the product does not commute (the "
+                                      "cross-product term changes sign). "
+                                      "p ⊗ q = (p0 q0 − p·q, p0 q + q0 p + p × q)",
+                             lambda p, q: mult(q, p)),
+                     Mistake("xyzw", "you read and wrote the quaternions as [x, y, z, w]; "
+                                     "the course's order is [w, x, y, z], scalar first",
+                             lambda p, q: wxyz_read_as_xyzw(mult, p, q))]),
+              Check("quat_to_matrix", 4, "rotation matrix of a unit quaternion [w, x, y, z]",
+                    lambda rng: [(q,) for q in random_quats(rng, 36)] +
+                    [(np.array(q),) for q in ([1.0, 0, 0, 0], [0, 1.0, 0, 0],
+                                              [np.sqrt(.5), 0, 0, np.sqrt(.5)])],
+                    kl.matrix_from_quat,
+                    [Mistake("transposed", "you built the matrix of the conjugate q* (the "
+                                           "transpose): check the signs of the w-terms, "
+                                           "e.g. R21 = 2(xy + wz)",
+                             lambda q: kl.matrix_from_quat(q).T),
+                     Mistake("xyzw", "you read the quaternion as [x, y, z, w]; the course's "
+                                     "order is [w, x, y, z], scalar first",
+                             lambda q: kl.matrix_from_quat(np.roll(q, 1)))])]
+    return Assignment("01_rotations", "Rotations", checks)
