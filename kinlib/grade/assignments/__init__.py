@@ -19,4 +19,7 @@ def _lazy(module: str):
 
 ASSIGNMENTS = {
     "01_rotations": _lazy("rotations"),
+    "02_forward_kinematics": _lazy("forward_kinematics"),
+    "03_jacobian_and_ik": _lazy("jacobian_ik"),
+    "04_planning": _lazy("planning"),
 }
