@@ -112,10 +112,18 @@ def planar_2r_ik(x, y, l1, l2, elbow: str = "up") -> Planar2RIK:
     c2 = (px * px + py * py - a1 * a1 - a2 * a2) / (2.0 * a1 * a2)
     tol = 1e-12
     reachable = np.asarray((c2 >= -1.0 - tol) & (c2 <= 1.0 + tol))
-    c2 = np.clip(c2, -1.0, 1.0)
-    root = np.sqrt(1.0 - c2 * c2)
-    s2 = (0.0 - root) if elbow == "up" else root  # 0.0 - 0.0 is +0: θ2 = π, not −π
-    theta2 = np.arctan2(s2, c2)
+    # |θ2| from the half-angle form tan²(θ2/2) = ((l1+l2)² − r²) / (r² − (l1−l2)²), whose
+    # factors are differences of lengths: exact 0 on the rim where √(1 − c2²) would turn a
+    # rounding error of c2 (1e-16) into θ2 ≈ 1e-8. Clipping gives the closest configuration
+    # (stretched or folded) for unreachable targets.
+    r = np.hypot(px, py)
+    outer = np.sqrt(np.clip((a1 + a2 - r) * (a1 + a2 + r), 0.0, None))
+    inner = np.sqrt(np.clip((r - np.abs(a1 - a2)) * (r + np.abs(a1 - a2)), 0.0, None))
+    size = 2.0 * np.arctan2(outer, inner)  # in [0, π]
+    folded = size >= np.pi
+    theta2 = np.where(folded, np.pi, -size if elbow == "up" else size)[()]  # π, not −π
+    s2 = np.where(folded, 0.0, np.sin(theta2))  # exact when folded: sin(π) is 1.2e-16
+    c2 = np.where(folded, -1.0, np.cos(theta2))
     theta1 = np.arctan2(py, px) - np.arctan2(a2 * s2, a1 + a2 * c2)
     theta1 = (theta1 + np.pi) % (2 * np.pi) - np.pi  # into [−π, π)
     return Planar2RIK(theta1, theta2, reachable)

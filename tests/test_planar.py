@@ -91,3 +91,22 @@ def test_ik_batched_and_bad_input():
         planar_2r_ik(1.0, 0.0, 0.0, 1.0)
     with pytest.raises(KinlibError, match="NaN"):
         planar_2r_ik(np.nan, 0.0, 1.0, 1.0)
+
+
+def test_ik_on_the_rim_is_exact_not_rounding_amplified():
+    """√(1 − c2²) turns c2 = 1 − 1e-16 into θ2 ≈ 1.5e-8; the half-angle form gives 0 for
+    targets exactly on the rim (3-4-5 triangles: exactly representable)."""
+    from kinlib import planar_2r_ik
+
+    l1, l2 = 2.0, 3.0
+    for x, y in ((3.0, 4.0), (-4.0, 3.0), (0.0, -5.0), (5.0, 0.0), (-3.0, -4.0)):
+        for elbow in ("up", "down"):
+            sol = planar_2r_ik(x, y, l1, l2, elbow=elbow)
+            assert sol.reachable and sol.theta2 == 0.0
+            assert abs(sol.theta1 - np.arctan2(y, x)) < 1e-15
+    for x, y in ((1.0, 0.0), (0.0, -1.0), (0.6, 0.8)):
+        sol = planar_2r_ik(x, y, l1, l2)
+        assert sol.reachable and sol.theta2 == np.pi
+    c2 = (1.7**2 - 1.0 - 0.49) / 1.4  # the textbook formula on the rim of a 1.0/0.7 arm
+    assert np.arctan2(np.sqrt(1 - c2**2), c2) > 1e-9  # the control: it loses 8 digits
+    assert planar_2r_ik(1.7, 0.0, 1.0, 0.7).theta2 == 0.0
