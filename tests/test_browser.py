@@ -7,8 +7,10 @@ what shows this test can fail. Needs Chromium at /usr/bin/chromium; without it t
 is skipped, or fails when ``KINLIB_REQUIRE_BROWSER=1`` (CI installs Chromium).
 """
 
+import html
 import io
 import os
+import re
 import time
 from pathlib import Path
 
@@ -226,3 +228,18 @@ def test_exported_notebook_shows_its_scene_without_a_server(browser, tmp_path, m
     # the control: the live viewer's iframe needs the (now gone) server and shows nothing
     dead, names = open_scene(browser, tmp_path / "live.html", tmp_path / "live.png")
     assert dead <= EMPTY and "link1" not in names, f"{dead} pixels without a server?"
+
+
+def test_ik_notebook_exports_its_animated_scene(browser, tmp_path, monkeypatch):
+    from test_viz import page_commands
+
+    before = meshcat_servers()
+    static = export_html("10_inverse_kinematics", True, monkeypatch)
+    assert meshcat_servers() <= before, "a notebook left its meshcat server running"
+    (tmp_path / "static.html").write_text(static, encoding="utf-8")
+    seen, names = open_scene(browser, tmp_path / "static.html", tmp_path / "static.png")
+    assert seen >= AXIS_SEEN, f"only {seen} joint-axis pixels; see {tmp_path}"
+    assert {"notebook10", "puma560", "link1", "link6"} <= set(names), names[:40]
+    page = html.unescape(re.search(r'srcdoc="([^"]*)"', static).group(1))
+    kinds = {c["type"] for c in page_commands(page)}
+    assert "set_animation" in kinds, kinds  # the IK trajectory travels inside the snapshot
