@@ -265,3 +265,48 @@ def test_command_line_json_parallel_and_exit_status(tmp_path):
                           str(bad)], capture_output=True, text=True, timeout=300)
     assert out.returncode == 2
     assert "total: 34 / 34" in out.stdout and "NOT GRADED" in out.stdout
+
+
+def test_exceptions_get_the_checks_hint(tmp_path):
+    ik = patched(solution_code("03_jacobian_and_ik"),
+                 ("        return None\n    c2 = min(", "        raise ValueError('unreachable')\n"
+                                                      "    c2 = min("))
+    stack = patched(solution_code("02_forward_kinematics"),
+                    ("    children = {}\n    for joint in robot[\"joints\"]:\n"
+                     "        children.setdefault(joint[\"parent\"], []).append(joint)\n"
+                     "    poses = {}\n",
+                     "    poses = {robot['root']: np.eye(4)}\n"
+                     "    for joint in robot['joints']:  # list order: parents may come later\n"
+                     "        T = poses[joint['parent']] @ origin(joint) @ "
+                     "motion(joint, q.get(joint['name'], 0.0))\n"
+                     "        poses[joint['child']] = T\n    return poses\n"
+                     "    children = {}\n"))
+    results = grade_many([write_notebook(tmp_path / "ik.ipynb", ik,
+                                         assignment="03_jacobian_and_ik"),
+                          write_notebook(tmp_path / "fk.ipynb", stack,
+                                         assignment="02_forward_kinematics")], jobs=2)
+    ik_check = by_function(results[0])["ik_2r"]
+    raised = [d for d in ik_check["diagnoses"] if d["key"] == "raised"]
+    assert raised and "return None for it instead of raising" in raised[0]["message"]
+    assert 0 < ik_check["passed"] < ik_check["total"]
+    fk_check = by_function(results[1])["fk_matrix_stack"]
+    raised = [d for d in fk_check["diagnoses"] if d["key"] == "raised"]
+    assert raised and "KeyError" in raised[0]["message"]
+    assert "start at the root link" in raised[0]["message"]
+    assert 0 < fk_check["passed"] < fk_check["total"]  # in-order lists still come out right
+
+
+def test_shape_messages(tmp_path):
+    from kinlib.grade._checks import as_numeric
+
+    _, bad = as_numeric(np.zeros((6, 2)), (2, 6))
+    assert bad.key == "shape" and "transpose" in bad.message
+    _, bad = as_numeric(np.zeros((3, 4)), (2, 6))
+    assert bad.key == "shape" and "reshape it to (2, 6)" in bad.message
+    code = patched(solution_code("01_rotations"),
+                   ("    return np.concatenate([[w], v])",
+                    "    return np.concatenate([[w], v])[:, None]"))  # (4, 1)
+    result = by_function(grade(write_notebook(tmp_path / "t.ipynb", code,
+                                              assignment="01_rotations")))
+    assert top(result["quat_multiply"]) == "shape"
+    assert "reshape it to (4,)" in result["quat_multiply"]["diagnoses"][0]["message"]

@@ -85,7 +85,9 @@ def as_numeric(got, shape: tuple, what: str = "an array") -> tuple[np.ndarray | 
     except (TypeError, ValueError):
         return None, Verdict(False, "type", f"returned {fmt(got, 80)}, which is not {want}")
     if a.shape != tuple(shape):
-        if a.size == int(np.prod(shape)) and a.size > 1:
+        if a.ndim == 2 and a.shape == tuple(shape)[::-1]:
+            hint = "; that is the shape of the transpose: check rows against columns"
+        elif a.size == int(np.prod(shape)) and a.size > 1:
             hint = f"; it has the right number of entries: reshape it to {shape}"
         else:
             hint = ""
@@ -120,6 +122,7 @@ class Check:
     judge: Callable | None = None  # (args, got) -> Verdict, instead of the default
     atol: float = 1e-6
     time_limit: float = 5.0  # seconds per case
+    on_error: Callable | None = None  # (args, error text) -> a hint for the student, or None
 
     def make_cases(self, seed: int) -> list[tuple]:
         rng = np.random.default_rng([seed, zlib.crc32(self.function.encode())])

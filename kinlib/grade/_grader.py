@@ -179,6 +179,13 @@ def _judge(check: Check, args: tuple, status: str, payload) -> Verdict:
                "missing": "missing", "not run": "not run"}[status]
         if status == "missing":
             payload = f"`{check.function}` is {payload} in the submission"
+        elif status == "error" and check.on_error is not None:
+            try:
+                hint = check.on_error(args, payload)
+            except Exception:  # a hint must never stop the grading
+                hint = None
+            if hint:
+                payload = f"{payload}. {hint}"
         return Verdict(False, key, payload)
     try:
         return check.verdict(args, payload)
