@@ -94,6 +94,8 @@ ROTATION_MISTAKES = {
     "quat_multiply": (("np.cross(p[1:], q[1:])", "np.cross(q[1:], p[1:])"), "order"),
     "quat_to_matrix": (("w, x, y, z = np.asarray(q, dtype=float)",
                         "x, y, z, w = np.asarray(q, dtype=float)"), "xyzw"),
+    "matrix_to_quat": (("    return q / np.linalg.norm(q)",
+                        "    return np.roll(q / np.linalg.norm(q), -1)"), "xyzw"),
 }
 
 
@@ -152,9 +154,11 @@ def test_q_and_minus_q_and_other_valid_answers_are_accepted(tmp_path):
          "    return alpha + np.pi, np.pi - beta, gamma + np.pi\n"),
         # quat_to_matrix of -q is the same matrix
         ("w, x, y, z = np.asarray(q, dtype=float)", "w, x, y, z = -np.asarray(q, dtype=float)"),
+        # and -q is as good an answer as q (the w >= 0 choice is not required)
+        ("    return q / np.linalg.norm(q)", "    return -q / np.linalg.norm(q)"),
     ), assignment="01_rotations")
     result = by_function(grade(sub))
-    for fn in ("matrix_to_euler_zyx", "quat_to_matrix"):
+    for fn in ("matrix_to_euler_zyx", "quat_to_matrix", "matrix_to_quat"):
         assert result[fn]["passed"] == result[fn]["total"], result[fn]
 
 
@@ -264,7 +268,8 @@ def test_command_line_json_parallel_and_exit_status(tmp_path):
     out = subprocess.run([sys.executable, "-m", "kinlib.grade", "--no-write", str(good),
                           str(bad)], capture_output=True, text=True, timeout=300)
     assert out.returncode == 2
-    assert "total: 34 / 34" in out.stdout and "NOT GRADED" in out.stdout
+    assert f"total: {rows[0]['max_score']:g} / {rows[0]['max_score']:g}" in out.stdout
+    assert "NOT GRADED" in out.stdout
 
 
 def test_exceptions_get_the_checks_hint(tmp_path):
@@ -310,3 +315,21 @@ def test_shape_messages(tmp_path):
                                               assignment="01_rotations")))
     assert top(result["quat_multiply"]) == "shape"
     assert "reshape it to (4,)" in result["quat_multiply"]["diagnoses"][0]["message"]
+
+
+def test_quaternion_from_matrix_mistakes(tmp_path):
+    start = "    R = np.asarray(R, dtype=float)\n    ### BEGIN SOLUTION\n    sq = np.array("
+    naive = ("    R = np.asarray(R, dtype=float)\n    w = np.sqrt(1 + np.trace(R)) / 2\n"
+             "    return np.array([w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w),"
+             " (R[1, 0] - R[0, 1]) / (4 * w)])\n    ### BEGIN SOLUTION\n    sq = np.array(")
+    conj = ("    R = np.asarray(R, dtype=float).T\n    ### BEGIN SOLUTION\n    sq = np.array(")
+    code = solution_code("01_rotations")
+    subs = [write_notebook(tmp_path / f"{k}.ipynb", patched(code, (start, v)),
+                           assignment="01_rotations") for k, v in (("naive", naive),
+                                                                   ("conj", conj))]
+    naive_r, conj_r = (by_function(r)["matrix_to_quat"] for r in grade_many(subs, jobs=2))
+    # dividing by 4w: right except at half turns, where it is NaN or raises (w = 0)
+    assert 0 < naive_r["passed"] < naive_r["total"]
+    keys = {d["key"] for d in naive_r["diagnoses"]}
+    assert keys <= {"nan", "raised", "wrong"} and keys & {"nan", "raised"}, naive_r
+    assert top(conj_r) == "conjugate"

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import secrets
 import time
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
@@ -80,7 +81,6 @@ class _Session:
         self.reports: dict[int, dict] = {}
         self.worker: Worker | None = None
         self.restarts = 0
-        self.calls = 0
 
     def ready(self) -> Worker:
         """A process that has run every cell not known to hang or kill it."""
@@ -129,8 +129,8 @@ class _Session:
 def _run_check(session: _Session, check: Check, cases: list[tuple]) -> list[tuple]:
     """Call the student's function on every case: a list of (status, payload) per case."""
     out: list[tuple] = [("not run", "an earlier case hung or ended the process")] * len(cases)
-    session.calls += 1
-    call_id = session.calls
+    call_id = secrets.token_hex(8)  # unguessable: code running in an earlier call cannot
+    # forge replies for this one (replies to earlier calls, late or forged, are dropped)
     try:
         w = session.ready()
         w.request({"op": "call", "id": call_id, "name": check.function,

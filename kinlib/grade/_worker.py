@@ -13,7 +13,7 @@ Requests and replies:
 - ``{"op": "call", "id": n, "name": f, "cases": [[args...], ...]}`` → ``{"ev": "missing",
   "what": ...}`` if ``f`` is not a function of the submission, else one ``{"ev": "case",
   "i": k, "ok": bool, "value" | "error": ...}`` per case; finally ``{"ev": "call_done"}``;
-  every reply carries the call's ``id`` (the grader drops replies of earlier calls).
+  every reply carries the call's ``id``, a random token (the grader drops other replies).
 - ``{"op": "exit"}``.
 
 Nothing here is trusted by the grader: it compares the values itself, in its own process.

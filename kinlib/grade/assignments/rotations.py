@@ -1,5 +1,5 @@
 """Assignment 01 · rotations: elementary rotations, ZYX Euler angles both ways (with gimbal
-lock), axis-angle both ways, the quaternion product and quaternion → matrix."""
+lock), axis-angle both ways, the quaternion product, quaternion → matrix and back."""
 
 from __future__ import annotations
 
@@ -192,5 +192,39 @@ def assignment() -> Assignment:
                              lambda q: kl.matrix_from_quat(q).T),
                      Mistake("xyzw", "you read the quaternion as [x, y, z, w]; the course's "
                                      "order is [w, x, y, z], scalar first",
-                             lambda q: kl.matrix_from_quat(np.roll(q, 1)))])]
+                             lambda q: kl.matrix_from_quat(np.roll(q, 1)))]),
+              Check("matrix_to_quat", 4, "unit quaternion [w, x, y, z] of R (q or −q)",
+                    _matrix_quat_cases, kl.quat_from_matrix,
+                    [Mistake("xyzw", "you returned [x, y, z, w]; the course's order is "
+                                     "[w, x, y, z], scalar first",
+                             lambda R: np.roll(kl.quat_from_matrix(R), -1)),
+                     Mistake("xyzw", "you returned [x, y, z, w]; the course's order is "
+                                     "[w, x, y, z], scalar first",
+                             lambda R: -np.roll(kl.quat_from_matrix(R), -1)),
+                     Mistake("conjugate", "you returned the conjugate q* (the rotation Rᵀ): "
+                                          "x = (R32 − R23)/(4w), not (R23 − R32)/(4w)",
+                             lambda R: kl.quat_conjugate(kl.quat_from_matrix(R))),
+                     Mistake("conjugate", "you returned the conjugate q* (the rotation Rᵀ): "
+                                          "x = (R32 − R23)/(4w), not (R23 − R32)/(4w)",
+                             lambda R: -kl.quat_conjugate(kl.quat_from_matrix(R)))],
+                    accept=lambda R: [-kl.quat_from_matrix(R)],
+                    on_error=_quat_error_hint),
+              ]
     return Assignment("01_rotations", "Rotations", checks)
+
+
+def _matrix_quat_cases(rng):
+    out = [(R,) for R in random_rotations(rng, 30)]
+    # half turns: w = 0, so a formula that divides by 4w breaks (Shepperd's method does not)
+    out += [(kl.matrix_from_axis_angle(k, np.pi),) for k in random_unit_vectors(rng, 6)]
+    out += [(kl.rotx(np.pi),), (kl.roty(np.pi),), (kl.rotz(np.pi),), (np.eye(3),),
+            (kl.matrix_from_axis_angle([1.0, 1.0, 0.0], np.pi - 1e-9),)]
+    return out
+
+
+def _quat_error_hint(args, error: str):
+    (R,) = args
+    if 1.0 + np.trace(R) < 1e-6:
+        return ("Here w = cos(θ/2) = 0 (a half turn): do not divide by w; start from the "
+                "largest of w², x², y², z² (from the diagonal of R) and divide by that")
+    return None
