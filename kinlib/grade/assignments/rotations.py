@@ -8,8 +8,14 @@ import numpy as np
 import kinlib as kl
 
 from .._checks import RIGHT, Assignment, Check, Mistake, Verdict, as_numeric, close, fmt
-from .common import (DEGREES, TRANSPOSED, random_quats, random_rotations, random_unit_vectors,
-                     wxyz_read_as_xyzw)
+from .common import (
+    DEGREES,
+    TRANSPOSED,
+    random_quats,
+    random_rotations,
+    random_unit_vectors,
+    wxyz_read_as_xyzw,
+)
 
 ELEMENTARY = {"rotx": kl.rotx, "roty": kl.roty, "rotz": kl.rotz}
 SIN_SIGN = ("the sign of sin is on the wrong side: you returned the transpose, the rotation "
