@@ -36,3 +36,37 @@ def by_function(result: dict) -> dict:
 
 def top(check: dict) -> str:
     return check["diagnoses"][0]["key"] if check["diagnoses"] else ""
+
+
+def _edits(mistake) -> list:
+    """A mistake's edit: one (old, new) pair, or a tuple of them."""
+    edit = mistake[0]
+    return [edit] if isinstance(edit[0], str) else list(edit)
+
+
+def mistake_submissions(tmp_path: Path, name: str, code: str, table, *before: str) -> list:
+    """Submission n carries the n-th mistake of every function in ``table`` (pairs
+    ``(function, [(edit, key), ...])``) patched into ``code``, after the cells ``before``."""
+    subs = []
+    for n in range(max(len(m) for _, m in table)):
+        edits = [e for _, m in table if n < len(m) for e in _edits(m[n])]
+        subs.append(write_notebook(tmp_path / f"m{n}.ipynb", *before, patched(code, *edits),
+                                   assignment=name))
+    return subs
+
+
+def misdiagnosed(results: list, table, unaffected=None) -> list:
+    """The mistakes of ``table`` not diagnosed with their key in ``results`` (graded
+    :func:`mistake_submissions`). Functions in ``unaffected`` (default: all) must score
+    full marks in the submissions without a mistake of their own."""
+    wrong = []
+    for fn, mistakes in table:
+        for n, (edit, key) in enumerate(mistakes):
+            check = by_function(results[n])[fn]
+            if check["passed"] == check["total"] or top(check) != key:
+                wrong.append((fn, key, str(edit)[:80], check["passed"], check["diagnoses"]))
+        if unaffected is None or fn in unaffected:
+            for r in results[len(mistakes):]:
+                check = by_function(r)[fn]
+                assert check["passed"] == check["total"], (fn, check["diagnoses"])
+    return wrong

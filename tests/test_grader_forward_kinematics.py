@@ -9,7 +9,15 @@ carries exactly its own mistake.
 
 import numpy as np
 import pytest
-from grading_helpers import by_function, patched, solution_code, top, write_notebook
+from grading_helpers import (
+    by_function,
+    misdiagnosed,
+    mistake_submissions,
+    patched,
+    solution_code,
+    top,
+    write_notebook,
+)
 
 import kinlib as kl
 from kinlib.grade import grade_many
@@ -247,32 +255,16 @@ STACK_MISTAKES = [
 ]
 
 
-def _submissions(tmp_path):
-    right = solution_code(NAME) + "\n\n_dh = dh_matrix\n"
-    code = patched(solution_code(NAME), ("T = T @ dh_matrix(", "T = T @ _dh("))
-    lists = (DH_MISTAKES, FK_MISTAKES, STACK_MISTAKES)
-    subs = []
-    for n in range(max(map(len, lists))):
-        edits = []
-        for m in lists:
-            if n < len(m):  # one edit, or a tuple of edits
-                edits += [m[n][0]] if isinstance(m[n][0][0], str) else list(m[n][0])
-        subs.append(write_notebook(tmp_path / f"m{n}.ipynb", right, patched(code, *edits),
-                                   assignment=NAME))
-    return subs
+TABLE = (("dh_matrix", DH_MISTAKES), ("fk_dh", FK_MISTAKES),
+         ("fk_matrix_stack", STACK_MISTAKES))
 
 
 def test_forward_kinematics_mistakes_are_diagnosed(tmp_path):
-    results = [by_function(r) for r in grade_many(_submissions(tmp_path), jobs=4)]
-    wrong = []
-    for fn, mistakes in (("dh_matrix", DH_MISTAKES), ("fk_dh", FK_MISTAKES),
-                         ("fk_matrix_stack", STACK_MISTAKES)):
-        for n, (edit, key) in enumerate(mistakes):
-            check = results[n][fn]
-            if check["passed"] == check["total"] or top(check) != key:
-                wrong.append((fn, key, str(edit)[:80], check["passed"], check["diagnoses"]))
-        for r in results[len(mistakes):]:  # submissions without a mistake in fn
-            assert r[fn]["passed"] == r[fn]["total"], (fn, r[fn]["diagnoses"])
+    right = solution_code(NAME) + "\n\n_dh = dh_matrix\n"
+    code = patched(solution_code(NAME), ("T = T @ dh_matrix(", "T = T @ _dh("))
+    graded = grade_many(mistake_submissions(tmp_path, NAME, code, TABLE, right), jobs=4)
+    wrong = misdiagnosed(graded, TABLE)
+    results = [by_function(r) for r in graded]
     assert not wrong, wrong
     # the second model of a key says what differs (see also test_each_model_its_message)
     assert "intrinsic" in results[0]["fk_matrix_stack"]["diagnoses"][0]["message"]

@@ -8,7 +8,14 @@ function, so every expected diagnosis is decided by the test, not by the grader.
 
 import numpy as np
 import pytest
-from grading_helpers import by_function, patched, solution_code, top, write_notebook
+from grading_helpers import (
+    by_function,
+    misdiagnosed,
+    mistake_submissions,
+    patched,
+    solution_code,
+    write_notebook,
+)
 
 import kinlib as kl
 from kinlib.grade import grade_many
@@ -227,30 +234,10 @@ ALL = (("geometric_jacobian", JACOBIAN_MISTAKES), ("ik_2r", IK_MISTAKES),
        ("dls_step", DLS_MISTAKES), ("pose_error", POSE_MISTAKES))
 
 
-def _submissions(tmp_path):
-    code = solution_code(NAME)
-    subs = []
-    for n in range(max(len(m) for _, m in ALL)):
-        edits = []
-        for _, mistakes in ALL:
-            if n < len(mistakes):  # one edit, or a tuple of edits
-                e = mistakes[n][0]
-                edits += [e] if isinstance(e[0], str) else list(e)
-        subs.append(write_notebook(tmp_path / f"m{n}.ipynb", patched(code, *edits),
-                                   assignment=NAME))
-    return subs
-
-
 def test_jacobian_ik_mistakes_are_diagnosed(tmp_path):
-    results = [by_function(r) for r in grade_many(_submissions(tmp_path), jobs=4)]
-    wrong = []
-    for fn, mistakes in ALL:
-        for n, (edit, key) in enumerate(mistakes):
-            check = results[n][fn]
-            if check["passed"] == check["total"] or top(check) != key:
-                wrong.append((fn, key, str(edit)[:80], check["passed"], check["diagnoses"]))
-        for r in results[len(mistakes):]:  # the submissions without a mistake here
-            assert r[fn]["passed"] == r[fn]["total"], (fn, r[fn]["diagnoses"])
+    graded = grade_many(mistake_submissions(tmp_path, NAME, solution_code(NAME), ALL), jobs=4)
+    wrong = misdiagnosed(graded, ALL)
+    results = [by_function(r) for r in graded]
     assert not wrong, wrong
     by_key = {(fn, key): results[n][fn] for fn, ms in ALL for n, (_, key) in enumerate(ms)}
     # the exceptions show the student's own message

@@ -13,7 +13,14 @@ import itertools
 
 import numpy as np
 import pytest
-from grading_helpers import by_function, patched, solution_code, top, write_notebook
+from grading_helpers import (
+    by_function,
+    misdiagnosed,
+    mistake_submissions,
+    patched,
+    solution_code,
+    write_notebook,
+)
 
 import kinlib as kl
 from kinlib.cspace import NEIGHBOURS
@@ -275,33 +282,17 @@ def _isolated(code: str) -> str:
                     "_ec(u, v, free.shape, l1, l2, metric)"))
 
 
-def _submissions(tmp_path):
-    right = solution_code(NAME) + "\n\n_nb, _ec = neighbors, edge_cost\n"
-    code = _isolated(solution_code(NAME))
-    lists = (NEIGHBOR_MISTAKES, EDGE_MISTAKES, ASTAR_MISTAKES)
-    subs = []
-    for n in range(max(map(len, lists))):
-        edits = []
-        for m in lists:
-            if n < len(m):  # one edit, or a tuple of edits
-                edits += [m[n][0]] if isinstance(m[n][0][0], str) else list(m[n][0])
-        subs.append(write_notebook(tmp_path / f"m{n}.ipynb", right, patched(code, *edits),
-                                   assignment=NAME))
-    return subs
+TABLE = (("neighbors", NEIGHBOR_MISTAKES), ("edge_cost", EDGE_MISTAKES),
+         ("astar_2r", ASTAR_MISTAKES))
 
 
 def test_planning_mistakes_are_diagnosed(tmp_path):
-    results = [by_function(r) for r in grade_many(_submissions(tmp_path), jobs=4)]
-    wrong = []
-    for fn, mistakes in (("neighbors", NEIGHBOR_MISTAKES), ("edge_cost", EDGE_MISTAKES),
-                         ("astar_2r", ASTAR_MISTAKES)):
-        for n, (edit, key) in enumerate(mistakes):
-            check = results[n][fn]
-            if check["passed"] == check["total"] or top(check) != key:
-                wrong.append((fn, key, str(edit)[:80], check["passed"], check["diagnoses"]))
-        if fn != "astar_2r":  # the right copies keep astar_2r right
-            for r in results[len(mistakes):]:
-                assert r[fn]["passed"] == r[fn]["total"], (fn, r[fn]["diagnoses"])
+    right = solution_code(NAME) + "\n\n_nb, _ec = neighbors, edge_cost\n"
+    code = _isolated(solution_code(NAME))
+    graded = grade_many(mistake_submissions(tmp_path, NAME, code, TABLE, right), jobs=4)
+    # the right copies keep astar_2r right, but its own mistakes spoil nothing else
+    wrong = misdiagnosed(graded, TABLE, unaffected=("neighbors", "edge_cost"))
+    results = [by_function(r) for r in graded]
     assert not wrong, wrong
     n = next(n for n, (e, key) in enumerate(EDGE_MISTAKES) if e[1] == ABSOLUTE)
     floored = {d["key"] for d in results[n]["edge_cost"]["diagnoses"]}  # absolute + floor
