@@ -2,12 +2,14 @@
 #   make lab   creates .venv if missing, installs kinlib with its notebook dependencies,
 #              starts JupyterLab on notebooks/ (it prints the URL to open)
 #   make test  same environment, runs the whole test suite (lint + pytest)
+#   make site  same environment, executes every notebook into a static site in site/
+#              (offline: open site/index.html; MathJax is fetched once with npm into build/)
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinlib-installed
 
-.PHONY: lab test venv bench lint clean
+.PHONY: lab test venv bench lint clean site
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -29,6 +31,9 @@ lint: $(STAMP)
 test: lint
 	$(BIN)/python -m pytest
 
+site: $(STAMP)
+	$(BIN)/python -m kinlib.site --out site --jobs 2
+
 bench: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e '.[bench]'
 	$(BIN)/python bench/bench_conversions.py
@@ -36,4 +41,4 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_diffkin.py
 
 clean:
-	rm -rf $(VENV) build *.egg-info
+	rm -rf $(VENV) build site *.egg-info
