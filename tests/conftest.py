@@ -1,4 +1,5 @@
-"""Shared fixtures of the visualizer tests (the meshcat server itself: ../conftest.py)."""
+"""Shared fixtures: the visualizer tests' prefixes (the meshcat server itself: ../conftest.py)
+and the browser tests' Chromium."""
 
 import uuid
 
@@ -34,3 +35,13 @@ def make_viz(tmp_path):
     yield make
     for v in made:
         v.delete()
+
+
+@pytest.fixture(scope="session")
+def browser():
+    """One headless Chromium for the session's browser tests (each test opens its own
+    context); skipped or failed without Chromium, see ``browser_helpers``."""
+    from browser_helpers import launch
+
+    with launch() as b:
+        yield b

@@ -15,39 +15,12 @@ import time
 from pathlib import Path
 
 import numpy as np
-import pytest
+from browser_helpers import AXIS_SEEN, EMPTY, changed_fraction, joint_axis_mask
 
 from kinlib.robots import puma560
 
-CHROMIUM = "/usr/bin/chromium"
-ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync",
-        "--no-first-run"]
 MAGENTA = 0xFF00FF
 SEEN = 300  # robot pixels needed to call the robot drawn (it covers ~2000 at 800x600)
-EMPTY = 20  # at most this many on an empty scene
-
-
-def _unavailable(reason):
-    if os.environ.get("KINLIB_REQUIRE_BROWSER") == "1":
-        pytest.fail(f"KINLIB_REQUIRE_BROWSER=1 but {reason}")
-    pytest.skip(reason)
-
-
-@pytest.fixture(scope="module")
-def browser():
-    if not os.path.exists(CHROMIUM):
-        _unavailable(f"Chromium is not installed at {CHROMIUM}")
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        _unavailable("playwright is not installed")
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)  # fresh temp profile
-        try:
-            yield b
-        finally:
-            b.close()
 
 
 def robot_mask(png: bytes) -> np.ndarray:
@@ -69,10 +42,6 @@ def wait_for_picture(page, accept, timeout=15.0):
         if accept(mask) or time.monotonic() > deadline:
             return png, mask
         page.wait_for_timeout(150)
-
-
-def changed_fraction(a: np.ndarray, b: np.ndarray) -> float:
-    return (a ^ b).sum() / max((a | b).sum(), 1)
 
 
 def test_mask_on_synthetic_images():
@@ -136,18 +105,7 @@ def test_puma_in_the_live_viewer_and_the_static_page(browser, tmp_path):
 
 
 NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
-AXIS_SEEN = 150  # joint-axis pixels needed to call the robot drawn
 SESSION_KEYS = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL", "KINLIB_MESHCAT_SERVER_PID")
-
-
-def joint_axis_mask(png: bytes) -> np.ndarray:
-    """Pixels of kinlib's orange joint-axis colour 0xE8A317 (shaded); sky, floor and links
-    are blue or grey."""
-    from PIL import Image
-
-    rgb = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=int)
-    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
-    return (r > 90) & (g > 0.45 * r) & (g < 0.85 * r) & (b < 0.35 * r)
 
 
 def meshcat_servers() -> set[int]:

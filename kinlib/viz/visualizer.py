@@ -131,7 +131,7 @@ class RobotVisualizer:
         self.q = q0
         self.set_configuration(q0)
         # frame the robot: the camera looks at the origin from the front right, above
-        self.set_camera_position(max(reach, 0.1) * np.array([0.9, -1.1, 0.7]))
+        self.set_camera_position(max(reach, 0.1) * np.array([0.65, -0.8, 0.55]))
 
     # -- drawing --------------------------------------------------------------------------
     def _path(self, group: str, name: str) -> str:

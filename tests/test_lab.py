@@ -1,0 +1,297 @@
+"""The student's view: every notebook run in JupyterLab in a real (headless) browser.
+
+One JupyterLab server for the module (``lab_harness.Lab``: free port, temporary config,
+a copy of the notebooks). For each notebook a fresh page opens it in its own workspace,
+waits for the kernel, clicks *Run → Run All Cells* and waits until every code cell has
+an execution count. Then:
+
+- no error output: neither in the page (a traceback) nor in the notebook as JupyterLab
+  saves it;
+- the notebooks that show meshcat viewers (08, 09, 10) show them, and each viewer draws a
+  robot: at least ``AXIS_SEEN`` pixels of kinlib's orange joint axes; the control removes
+  the robot from that same viewer and the count must fall to ``EMPTY`` or below;
+- sliders are rendered where the notebook makes them (04: the Euler-rate determinant;
+  08 and 09: ``joint_panel``), and dragging one with the mouse changes what it drives:
+  the printed ``det E`` equals ``-cos β`` at the new ``β``, and the robot in the viewer
+  moves.
+
+Screenshots of every notebook go to pytest's ``tmp_path``; with
+``KINLIB_SCREENSHOTS=DIR`` (``make screenshots``), the two the README shows go to ``DIR``.
+The module fixture stops the server, its kernels and their meshcat servers even when a
+test fails, and checks that no process it started is left.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import time
+from pathlib import Path
+
+import pytest
+from browser_helpers import EMPTY, pixels_changed, solid_axes, wait_for_mask
+from lab_harness import Lab, marked_processes
+
+NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
+NAMES = sorted(p.stem for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb"))
+VIEWERS = {"08_urdf_and_matrix_stack", "09_denavit_hartenberg", "10_inverse_kinematics"}
+#: notebook → how many sliders it renders
+SLIDERS = {"04_gimbal_lock": 1, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}
+#: the README's pictures: notebook → file name
+README_SHOTS = {"09_denavit_hartenberg": "lab_denavit_hartenberg.png",
+                "04_gimbal_lock": "lab_gimbal_lock.png"}
+RUN_TIMEOUT = 240.0
+
+NOTEBOOK = ".jp-NotebookPanel:not(.lm-mod-hidden)"
+PROMPTS = f"""() => [...document.querySelectorAll('{NOTEBOOK} .jp-CodeCell .jp-InputPrompt')]
+  .map(p => p.innerText.trim())"""
+STDERR = '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'
+TRACEBACKS = f"""() => [...document.querySelectorAll('{NOTEBOOK} {STDERR}')]
+  .map(o => o.innerText).filter(t => /Traceback|Error/.test(t)).map(t => t.slice(0, 400))"""
+STATUS = """() => document.querySelector('.jp-Notebook-ExecutionIndicator')
+  ?.getAttribute('data-status')"""
+
+
+@pytest.fixture(scope="module")
+def lab(tmp_path_factory):
+    server = Lab(NOTEBOOKS, tmp_path_factory.mktemp("lab"))
+    try:
+        yield server
+    finally:
+        killed = server.stop()
+        left = marked_processes(server.marker)
+        assert not left, f"processes left running after the lab stopped: {left}"
+        assert not killed, f"these needed SIGKILL to stop: {killed}; see {server.log}"
+
+
+def _session(lab: Lab, name: str) -> dict | None:
+    return next((s for s in lab.api("GET", "api/sessions")
+                 if s.get("path", "").endswith(f"{name}.ipynb")), None)
+
+
+def open_notebook(lab: Lab, page, name: str, cells: int) -> None:
+    """Open ``name`` in a fresh workspace and wait until its kernel is idle."""
+    page.goto(f"{lab.base}/lab/workspaces/test-{name}/tree/{name}.ipynb"
+              f"?reset&token={lab.token}")
+    page.wait_for_function(
+        f"() => document.querySelectorAll('.jp-NotebookPanel:not(.lm-mod-hidden) "
+        f".jp-Cell').length === {cells}", timeout=60_000)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        session = _session(lab, name)
+        if (session and session["kernel"]["execution_state"] == "idle"
+                and page.evaluate(STATUS) == "idle"):
+            return
+        page.wait_for_timeout(250)
+    raise AssertionError(f"{name}: the kernel did not become idle in 60 s")
+
+
+def run_all(page, name: str, timeout: float = RUN_TIMEOUT) -> list[str]:
+    """Run → Run All Cells, then wait until every code cell has run (or one failed)."""
+    for _attempt in range(3):
+        page.locator(".lm-MenuBar-itemLabel", has_text="Run").first.click()
+        page.locator(".lm-Menu-item:not(.lm-mod-disabled) .lm-Menu-itemLabel",
+                     has_text="Run All Cells").first.click()
+        try:  # the first cell is queued or has run: Run All was taken
+            page.wait_for_function(f"() => ({PROMPTS})()[0] !== '[ ]:'", timeout=10_000)
+            break
+        except Exception:  # the menu was not ready yet: try again
+            page.keyboard.press("Escape")
+    deadline = time.monotonic() + timeout
+    while True:
+        prompts = page.evaluate(PROMPTS)
+        if all(re.fullmatch(r"\[\d+\]:", p) for p in prompts):
+            return prompts
+        if page.evaluate(TRACEBACKS) and page.evaluate(STATUS) == "idle":
+            return prompts  # Run All stops at an error; the caller reports it
+        if time.monotonic() > deadline:
+            raise AssertionError(f"{name}: not finished after {timeout:g} s: {prompts}")
+        page.wait_for_timeout(300)
+
+
+def saved_errors(lab: Lab, page, name: str) -> list[str]:
+    """Save the notebook from JupyterLab (Ctrl+S) and list the error outputs in the file."""
+    page.locator(".jp-NotebookPanel:not(.lm-mod-hidden) .jp-Notebook").click(
+        position={"x": 5, "y": 5})
+    page.keyboard.press("Control+s")
+    path = lab.root / f"{name}.ipynb"
+    deadline = time.monotonic() + 20
+    while time.monotonic() < deadline:
+        nb = json.loads(path.read_text())
+        code = [c for c in nb["cells"] if c["cell_type"] == "code"]
+        if code and all(c.get("execution_count") for c in code[:1]):
+            return [f"cell {i}: {o.get('ename')}: {o.get('evalue')}"
+                    for i, c in enumerate(nb["cells"]) for o in c.get("outputs", [])
+                    if o.get("output_type") == "error"]
+        page.wait_for_timeout(250)
+    raise AssertionError(f"{name}: JupyterLab did not save the notebook in 20 s")
+
+
+def viewer_frames(page):
+    return page.locator(".jp-NotebookPanel:not(.lm-mod-hidden) .jp-OutputArea-output "
+                        "iframe[src*='/static/']")
+
+
+def viewer_shooter(frame_el):
+    def shoot():
+        frame_el.scroll_into_view_if_needed()
+        return frame_el.screenshot()
+
+    return shoot
+
+
+def drag_slider(page, slider, dx: float) -> None:
+    """Drag a slider's handle ``dx`` pixels with the mouse, as a student would."""
+    handle = slider.locator(".noUi-handle").first
+    handle.scroll_into_view_if_needed()
+    box = handle.bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 11):
+        page.mouse.move(x + dx * k / 10, y)
+    page.mouse.up()
+
+
+def readout(slider) -> str:
+    return slider.locator(".widget-readout").first.inner_text().strip()
+
+
+def check_gimbal_slider(page, out: Path) -> None:
+    slider = page.locator(".widget-slider").first
+    text = slider.locator("xpath=ancestor::div[contains(@class,'jp-OutputArea-output')]")
+    before = text.inner_text()
+    beta0 = float(readout(slider))
+    drag_slider(page, slider, 60)
+    deadline = time.monotonic() + 10
+    while float(readout(slider)) == beta0 and time.monotonic() < deadline:
+        page.wait_for_timeout(100)
+    beta = float(readout(slider))
+    assert beta > beta0 + 1, f"the slider did not move: β {beta0} → {beta}"
+    deadline = time.monotonic() + 10
+    while (after := text.inner_text()) == before and time.monotonic() < deadline:
+        page.wait_for_timeout(100)
+    det = float(re.search(r"det E = ([-+0-9.]+)", after).group(1))
+    assert abs(det - (-math.cos(math.radians(beta)))) < 2e-4, (beta, det, after)
+    slider.screenshot(path=str(out / "slider_moved.png"))
+
+
+MOVED = 200  # pixels of a viewer that must change when a joint slider turns the robot
+STILL = 5  # at most this many change between two screenshots of an untouched viewer
+ROBOT = 400  # pixels that must change when the robot is removed from its viewer
+AXES_SEEN = 60  # inside pixels of joint-axis cylinders needed to call a robot drawn
+
+
+def settled(shoot, tries: int = 20) -> bytes:
+    """A screenshot once two in a row agree (the viewer has finished drawing)."""
+    last = shoot()
+    for _ in range(tries):
+        time.sleep(0.15)
+        png = shoot()
+        if pixels_changed(last, png) <= STILL:
+            return png
+        last = png
+    return last
+
+
+def check_panel_slider(page, out: Path) -> None:
+    """Drag joint 1's slider of the joint panel: the robot in the viewer must move. The
+    control: two screenshots of the untouched viewer agree."""
+    shoot = viewer_shooter(viewer_frames(page).first)
+    before = settled(shoot)
+    assert pixels_changed(before, shoot()) <= STILL, "the viewer changes by itself"
+    slider = page.locator(".widget-slider").first
+    value0 = readout(slider)
+    drag_slider(page, slider, 70)
+    deadline = time.monotonic() + 10
+    while readout(slider) == value0 and time.monotonic() < deadline:
+        page.wait_for_timeout(100)
+    assert readout(slider) != value0, "the joint slider did not move"
+    deadline = time.monotonic() + 10
+    while (changed := pixels_changed(before, after := shoot())) < MOVED \
+            and time.monotonic() < deadline:
+        page.wait_for_timeout(150)
+    (out / "viewer_before.png").write_bytes(before)
+    (out / "viewer_moved.png").write_bytes(after)
+    assert changed >= MOVED, f"joint 1 moved {value0} → {readout(slider)} but only " \
+                             f"{changed} pixels of the viewer changed; see {out}"
+
+
+def check_viewer(page, frame_el, name: str, k: int, out: Path) -> None:
+    """The viewer draws a robot: filled orange joint-axis cylinders, and many pixels that
+    go when the robot is removed from this viewer (the control, which must leave none)."""
+    shoot = viewer_shooter(frame_el)
+    wait_for_mask(shoot, solid_axes, lambda m: m.sum() >= AXES_SEEN, timeout=20)
+    png = settled(shoot)
+    axes = int(solid_axes(png).sum())
+    (out / f"viewer{k}.png").write_bytes(png)
+    assert axes >= AXES_SEEN, f"{name}: viewer {k} shows {axes} joint-axis pixels; see {out}"
+    frame = frame_el.element_handle().content_frame()
+    frame.evaluate(f"() => viewer.handle_command({{type: 'delete', "
+                   f"path: '/meshcat/notebook{name[:2]}'}})")  # the notebook's prefix
+    empty_png, empty = wait_for_mask(shoot, solid_axes, lambda m: m.sum() <= EMPTY)
+    (out / f"viewer{k}_emptied.png").write_bytes(empty_png)
+    assert empty.sum() <= EMPTY, f"{name}: {empty.sum()} joint-axis pixels with the robot " \
+                                 "deleted: the pixel check cannot tell an empty scene"
+    gone = pixels_changed(png, empty_png)
+    assert gone >= ROBOT, f"{name}: removing the robot changed only {gone} pixels"
+    print(f"{name} viewer {k}: {axes} joint-axis pixels ({int(empty.sum())} when emptied), "
+          f"{gone} robot pixels")
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_notebook_runs_in_jupyterlab(lab, browser, name, tmp_path):
+    nb = json.loads((NOTEBOOKS / f"{name}.ipynb").read_text())
+    n_code = sum(c["cell_type"] == "code" for c in nb["cells"])
+    context = browser.new_context(viewport={"width": 1280, "height": 900})
+    messages = []
+    try:
+        page = context.new_page()
+        page.on("pageerror", lambda e: messages.append(str(e)))
+        open_notebook(lab, page, name, len(nb["cells"]))
+        start = time.monotonic()
+        prompts = run_all(page, name)
+        seconds = time.monotonic() - start
+        page.screenshot(path=str(tmp_path / "end.png"))
+        tracebacks = page.evaluate(TRACEBACKS)
+        assert not tracebacks, f"{name}: error output in the page:\n{tracebacks[0]}"
+        assert len(prompts) == n_code and all(re.fullmatch(r"\[\d+\]:", p) for p in prompts), \
+            f"{name}: cells that did not run: {prompts}"
+        errors = saved_errors(lab, page, name)
+        assert not errors, f"{name}: error outputs in the saved notebook: {errors}"
+
+        frames = viewer_frames(page)
+        expected = "some" if name in VIEWERS else "none"
+        assert (frames.count() > 0) == (name in VIEWERS), \
+            f"{name}: {frames.count()} meshcat viewers, expected {expected}"
+        sliders = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden) .widget-slider")
+        assert sliders.count() == SLIDERS.get(name, 0), \
+            f"{name}: {sliders.count()} sliders rendered, expected {SLIDERS.get(name, 0)}"
+        if name == "04_gimbal_lock":
+            check_gimbal_slider(page, tmp_path)
+        elif name in SLIDERS:
+            check_panel_slider(page, tmp_path)
+        if name in README_SHOTS:
+            take_readme_shot(page, name, tmp_path)
+        for k in range(frames.count()):
+            check_viewer(page, frames.nth(k), name, k, tmp_path)
+        assert not messages, f"{name}: JavaScript errors in JupyterLab: {messages[:3]}"
+        print(f"{name}: {n_code} cells in {seconds:.1f} s")
+    finally:
+        context.close()
+        session = _session(lab, name)
+        if session is not None:  # close the kernel, as a student closing the tab would
+            lab.api("DELETE", f"api/sessions/{session['id']}")
+
+
+def take_readme_shot(page, name: str, tmp_path: Path) -> None:
+    """The README's picture of ``name``: the first viewer or slider in view, sidebar hidden."""
+    target = Path(os.environ.get("KINLIB_SCREENSHOTS") or tmp_path) / README_SHOTS[name]
+    page.keyboard.press("Control+b")  # hide the file browser
+    anchor = viewer_frames(page) if viewer_frames(page).count() else page.locator(
+        ".widget-slider")
+    anchor.first.scroll_into_view_if_needed()
+    page.wait_for_timeout(1500)
+    page.screenshot(path=str(target))
