@@ -7,11 +7,13 @@ repository), notebook windowing off (every cell stays in the page, so it can be 
 no news or update checks (nothing from the network). Kernels get their own meshcat servers,
 as in class: the variables naming the test session's server are removed.
 
-Every process the server starts inherits ``KINLIB_LAB_RUN=<random marker>``: the kernels,
-and through them their meshcat servers. :meth:`Lab.stop` shuts the server down through its
-REST API (which shuts the kernels down), then signals its process group, and finally kills
-whatever still carries the marker: :func:`marked_processes` must be empty afterwards, and
-the tests check that it is, also after a failing test.
+The server asks Linux to SIGTERM it when the test process dies, however it dies (a
+SIGTERMed server shuts its kernels down). Every process the server starts inherits
+``KINLIB_LAB_RUN=<random marker>``: the kernels, and through them their meshcat servers.
+:meth:`Lab.stop` shuts the server down through its REST API (which shuts the kernels
+down), then signals its process group, and finally kills whatever still carries the
+marker: :func:`marked_processes` must be empty afterwards, and the tests check that it is,
+also after a failing test and after pytest itself is killed (test_lab_cleanup.py).
 """
 
 from __future__ import annotations
@@ -28,6 +30,8 @@ import time
 import urllib.error
 import urllib.request
 from pathlib import Path
+
+from kinlib._viewer_server import _die_with
 
 MARK = "KINLIB_LAB_RUN"
 SESSION_KEYS = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL", "KINLIB_MESHCAT_SERVER_PID",
@@ -117,7 +121,7 @@ class Lab:
         with open(self.log, "wb") as log:
             self.proc = subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
                                          stdin=subprocess.DEVNULL, start_new_session=True,
-                                         cwd=self.work)
+                                         cwd=self.work, preexec_fn=_die_with(os.getpid()))
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             if self.proc.poll() is not None:

@@ -1,0 +1,112 @@
+"""The JupyterLab harness leaves nothing behind: not when a test fails, not when pytest
+itself is killed.
+
+Each case runs pytest in a subprocess on a small test file that starts a ``Lab``, runs
+notebook 08 in the browser (so a kernel and the kernel's meshcat server are running),
+records the pids that carry the run's marker, and then fails (``fail``) or waits to be
+SIGKILLed (``kill``). Afterwards no process may carry the marker and the port must be
+closed. The recorded pids are the control: the processes existed while the test ran.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from lab_harness import marked_processes
+
+TESTS = Path(__file__).resolve().parent
+INNER = '''
+import json, os, sys, time
+from pathlib import Path
+import pytest
+from browser_helpers import launch
+from lab_harness import Lab, marked_processes
+from test_lab import open_notebook, run_all
+
+RECORD = Path(os.environ["RECORD"])
+
+
+@pytest.fixture(scope="module")
+def lab(tmp_path_factory):
+    server = Lab(Path(os.environ["NOTEBOOKS"]), tmp_path_factory.mktemp("lab"))
+    try:
+        yield server
+    finally:
+        server.stop()
+
+
+def cmdline(pid):
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\\0", b" ").decode()
+    except OSError:
+        return ""
+
+
+def test_inner(lab):
+    name = "08_urdf_and_matrix_stack"
+    cells = len(json.loads((lab.root / f"{name}.ipynb").read_text())["cells"])
+    with launch() as browser:
+        page = browser.new_page()
+        open_notebook(lab, page, name, cells)
+        run_all(page, name)
+        pids = marked_processes(lab.marker)
+        RECORD.write_text(json.dumps({"marker": lab.marker, "port": lab.port,
+                                      "pytest": os.getpid(),
+                                      "processes": {p: cmdline(p) for p in pids}}))
+        if os.environ["MODE"] == "kill":
+            time.sleep(300)  # the outer test kills this pytest
+        assert False, "a deliberate failure, with the lab running"
+'''
+
+
+def _port_open(port: int) -> bool:
+    with socket.socket() as s:
+        return s.connect_ex(("127.0.0.1", port)) == 0
+
+
+@pytest.mark.parametrize("mode", ["fail", "kill"])
+def test_lab_leaves_nothing_running(mode, tmp_path, browser):
+    del browser  # only to skip (or fail under CI) exactly when the browser suite does
+    (tmp_path / "test_inner.py").write_text(INNER)
+    record = tmp_path / "record.json"
+    env = dict(os.environ, RECORD=str(record), MODE=mode,
+               NOTEBOOKS=str(TESTS.parent / "notebooks"),
+               PYTHONPATH=os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")]))
+    inner = subprocess.Popen([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                              "-p", "no:randomly", str(tmp_path / "test_inner.py")],
+                             cwd=tmp_path, env=env, stdout=subprocess.PIPE,
+                             stderr=subprocess.STDOUT, start_new_session=True)
+    try:
+        if mode == "kill":
+            deadline = time.monotonic() + 120
+            while not record.exists() and inner.poll() is None \
+                    and time.monotonic() < deadline:
+                time.sleep(0.2)
+            assert record.exists(), inner.communicate(timeout=30)[0].decode()[-3000:]
+            os.kill(inner.pid, signal.SIGKILL)
+        out = inner.communicate(timeout=180)[0].decode()
+    finally:
+        if inner.poll() is None:
+            os.killpg(inner.pid, signal.SIGKILL)
+    facts = json.loads(record.read_text())
+    running = " ".join(facts["processes"].values())
+    assert "jupyter" in running and "ipykernel" in running \
+        and "meshcat.servers.zmqserver" in running, running  # the control
+    if mode == "fail":
+        assert inner.returncode == 1 and "a deliberate failure" in out, out[-3000:]
+    else:
+        assert inner.returncode == -signal.SIGKILL
+    deadline = time.monotonic() + 30
+    while (left := marked_processes(facts["marker"])) and time.monotonic() < deadline:
+        time.sleep(0.25)
+    assert not left, f"left running after the {mode}: " + "; ".join(
+        facts["processes"].get(str(p), str(p)) for p in left)
+    assert not _port_open(facts["port"]), "JupyterLab's port is still open"
