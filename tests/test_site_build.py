@@ -1,0 +1,180 @@
+"""The site builder's parts, without a browser: the outline read from the notebooks, frozen
+widgets, offline animation players, MathJax's checksum, and its errors."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import nbformat
+import pytest
+
+from kinlib import KinlibError
+from kinlib.site import (
+    MARKER,
+    build_site,
+    ensure_mathjax,
+    execute_notebook,
+    index_html,
+    offline_players,
+    outline,
+)
+from kinlib.site._widgets import WIDGET_STATE, WIDGET_VIEW, freeze_widgets, render_widget
+
+NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
+
+
+def _notebook(folder: Path, name: str, cells: list) -> Path:
+    nb = nbformat.v4.new_notebook(cells=cells)
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    path = folder / f"{name}.ipynb"
+    nbformat.write(nb, path)
+    return path
+
+
+def test_outline_reads_titles_and_goals_of_the_course():
+    pages = outline(NOTEBOOKS)
+    assert [p.number for p in pages] == list(range(1, 13))
+    first = pages[0]
+    assert first.title.startswith("Spatial descriptions") and first.href.endswith(".html")
+    raw = json.loads((NOTEBOOKS / f"{first.name}.ipynb").read_text())
+    heading = "".join(raw["cells"][0]["source"]).splitlines()[0]
+    assert heading.startswith("# 01") and first.title in heading  # the number is dropped
+    for page in pages:
+        assert page.goals.startswith("After this notebook you can"), page.name
+        last = page.goals.strip().splitlines()[-1]
+        assert re.match(r"\d+\. ", last), (page.name, last)  # the list, not what follows
+    assert "Conventions" not in first.goals
+
+
+def test_outline_refuses_a_notebook_without_a_title(tmp_path):
+    _notebook(tmp_path, "01_untitled", [nbformat.v4.new_markdown_cell("no heading here")])
+    with pytest.raises(KinlibError, match=r"01_untitled\.ipynb: expected a '# title' line"):
+        outline(tmp_path)
+    with pytest.raises(KinlibError, match="no notebooks named NN_"):
+        outline(tmp_path / "missing")
+
+
+def test_index_page_lists_both_parts_and_renders_goals_as_html():
+    page = index_html(outline(NOTEBOOKS))
+    assert page.count('class="kl-lesson"') == 12
+    assert "Part 1" in page and "Part 2" in page and "<ol>" in page
+    assert "tex-svg-full.js" in page and "https://" not in page
+
+
+def _slider_state():
+    return {
+        "s1": {"model_name": "FloatSliderModel",
+               "state": {"description": "beta (°)", "value": 45.0, "min": -90.0, "max": 90.0,
+                         "step": 0.5}},
+        "o1": {"model_name": "OutputModel",
+               "state": {"outputs": [{"output_type": "stream", "name": "stdout",
+                                      "text": "det E = -0.7071 <ok>\n"}]}},
+        "b1": {"model_name": "ButtonModel", "state": {"description": "forward"}},
+        "v1": {"model_name": "VBoxModel",
+               "state": {"children": ["IPY_MODEL_s1", "IPY_MODEL_o1", "IPY_MODEL_b1",
+                                      "IPY_MODEL_zz"]}},
+    }
+
+
+def test_widgets_are_frozen_from_their_saved_state():
+    models = _slider_state()
+    html = render_widget("v1", models)
+    assert 'type="range" disabled min="-90.0" max="90.0" step="0.5" value="45.0"' in html
+    assert "<output>45</output>" in html and "beta (°)" in html
+    assert "det E = -0.7071 &lt;ok&gt;" in html  # printed text is escaped
+    assert "<button class=\"kl-widget\" disabled>forward</button>" in html
+    assert "[widget]" in html  # a child whose model is missing
+    nb = nbformat.v4.new_notebook()
+    cell = nbformat.v4.new_code_cell("ui")
+    cell.outputs = [nbformat.v4.new_output(
+        "display_data", data={WIDGET_VIEW: {"model_id": "v1", "version_major": 2},
+                              "text/plain": "VBox(...)"})]
+    nb.cells = [cell]
+    nb.metadata["widgets"] = {WIDGET_STATE: {"state": models, "version_major": 2}}
+    assert freeze_widgets(nb) == 1
+    assert "widgets" not in nb.metadata
+    data = nb.cells[0].outputs[0]["data"]
+    assert list(data) == ["text/html"] and "kl-frozen" in data["text/html"]
+    assert "Interactive in JupyterLab" in data["text/html"]
+
+
+def test_animation_players_lose_the_icon_font_but_keep_their_buttons():
+    page = ('<link href="https://maxcdn.bootstrapcdn.com/font-awesome/4.4.0/css/'
+            'font-awesome.min.css" rel="stylesheet"/>'
+            '<button onclick="a.reverse_animation()"><i class="fa fa-play fa-flip-horizontal">'
+            '</i></button><button onclick="a.play_animation()"><i class="fa fa-play"></i>'
+            '</button><button><i class="fa fa-pause"></i></button>')
+    out = offline_players(page)
+    assert "font-awesome" not in out and "https://" not in out and "fa-" not in out
+    assert out.count('class="kl-icon"') == 3
+    assert "◀" in out and "▶" in out and "❚❚" in out
+
+
+def test_mathjax_is_checked_against_its_pinned_hash(tmp_path):
+    path = ensure_mathjax()  # fetched once into build/ (npm pack) and verified
+    assert path.stat().st_size > 1_000_000
+    fake = tmp_path / "tex-svg-full.js"
+    fake.write_text("// not MathJax")
+    assert ensure_mathjax(fake) == fake  # a file given explicitly is used as it is
+    import kinlib.site as site
+
+    bad = tmp_path / "build" / "tex-svg-full.js"
+    bad.parent.mkdir()
+    bad.write_text("// tampered")
+    original = site.MATHJAX_FILE
+    site.MATHJAX_FILE = bad
+    try:
+        with pytest.raises(KinlibError, match=r"sha256 \w+ is not MathJax 3\.2\.2's"):
+            ensure_mathjax()
+    finally:
+        site.MATHJAX_FILE = original
+
+
+def test_build_refuses_bad_arguments_and_foreign_folders(tmp_path):
+    foreign = tmp_path / "mine"
+    foreign.mkdir()
+    (foreign / "thesis.tex").write_text("precious")
+    with pytest.raises(KinlibError, match=r"not a kinlib site \(no \.kinlib-site\); refusing"):
+        build_site(foreign, NOTEBOOKS, only=["01_spatial_descriptions"])
+    assert (foreign / "thesis.tex").read_text() == "precious"
+    with pytest.raises(KinlibError, match="no notebook named '99_nothing'"):
+        build_site(tmp_path / "out", NOTEBOOKS, only=["99_nothing"])
+    for jobs in (0, 1.5, True):
+        with pytest.raises(KinlibError, match="jobs must be a positive integer"):
+            build_site(tmp_path / "out", NOTEBOOKS, jobs=jobs)
+
+
+def test_a_failing_cell_names_the_notebook_and_the_cell(tmp_path):
+    folder = tmp_path / "nbs"
+    folder.mkdir()
+    _notebook(folder, "01_broken", [nbformat.v4.new_markdown_cell("# 01 · Broken"),
+                                    nbformat.v4.new_code_cell("x = 1"),
+                                    nbformat.v4.new_code_cell("x / 0")])
+    with pytest.raises(KinlibError, match=r"01_broken.ipynb: cell 2 raised ZeroDivisionError"):
+        execute_notebook(folder / "01_broken.ipynb", timeout=60)
+    out = tmp_path / "site"
+    with pytest.raises(KinlibError, match=r"01_broken\.ipynb: cell 2"):
+        build_site(out, folder, log=lambda _: None)
+    assert (out / MARKER).exists() and not (out / "01_broken.html").exists()
+
+
+def test_a_small_site_is_built_from_scratch_and_rebuilt(tmp_path):
+    folder = tmp_path / "nbs"
+    folder.mkdir()
+    _notebook(folder, "01_small", [
+        nbformat.v4.new_markdown_cell("# 01 · Small\n\n**Learning goals.** After this "
+                                      "notebook you can\n\n1. add $1 + 1$."),
+        nbformat.v4.new_code_cell("import os\nprint(os.environ.get('KINLIB_STATIC_SCENES'),"
+                                  " os.environ.get('KINLIB_MESHCAT_ZMQ_URL'))")])
+    out = tmp_path / "site"
+    seconds = build_site(out, folder, log=lambda _: None)
+    assert list(seconds) == ["01_small"]
+    page = (out / "01_small.html").read_text()
+    assert "1 None" in page  # static scenes on, the test session's server hidden
+    assert '<a href="index.html">Course outline</a>' in page
+    (out / "stale.html").write_text("old")
+    build_site(out, folder, log=lambda _: None)  # a previous build is replaced
+    assert not (out / "stale.html").exists() and (out / "01_small.html").exists()
