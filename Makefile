@@ -9,7 +9,7 @@ VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinlib-installed
 
-.PHONY: lab test venv bench lint clean site
+.PHONY: lab test venv bench lint clean site screenshots
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -33,6 +33,11 @@ test: lint
 
 site: $(STAMP)
 	$(BIN)/python -m kinlib.site --out site --jobs 2
+
+# The README's two JupyterLab screenshots, retaken by the browser suite (needs Chromium).
+screenshots: $(STAMP)
+	KINLIB_SCREENSHOTS=notebooks/screenshots KINLIB_REQUIRE_BROWSER=1 $(BIN)/python -m pytest \
+	    -q tests/test_lab.py -k "04_gimbal_lock or 09_denavit_hartenberg"
 
 bench: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e '.[bench]'

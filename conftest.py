@@ -9,14 +9,22 @@ notebooks run by nbval (whose kernels inherit the environment) talks to it.
 not fixtures: nbval kills kernels hard and fixture teardown is skipped on some exits, which
 leaks servers. If ``KINLIB_MESHCAT_ZMQ_URL`` is already set, that server is used and none
 is started. See DEVELOPERS.md.
+
+The course site the browser tests read (``tests/test_site.py``) is built in the background
+from ``pytest_collection_finish`` when a collected test asks for it: ``python -m kinlib.site``
+runs on the second core while the other tests run (one notebook at a time), and the
+``site`` fixture waits for it. ``pytest_unconfigure`` stops it if it is still running.
 """
 
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 import tempfile
+import time
 
-from kinlib._viewer_server import ViewerServer, start_server
+from kinlib._viewer_server import ViewerServer, _die_with, start_server
 
 ZMQ_ENV = "KINLIB_MESHCAT_ZMQ_URL"
 WEB_ENV = "KINLIB_MESHCAT_WEB_URL"
@@ -58,7 +66,33 @@ def pytest_configure(config):
     os.environ[PID_ENV] = str(server.pid)
 
 
+def pytest_collection_finish(session):
+    if hasattr(session.config, "workerinput") or session.config.option.collectonly:
+        return
+    if not any("site" in getattr(item, "fixturenames", ()) for item in session.items):
+        return
+    folder = tempfile.mkdtemp(prefix="kinlib-site-")
+    env = {k: v for k, v in os.environ.items() if not k.startswith("KINLIB_MESHCAT_")}
+    with open(os.path.join(folder, "build.log"), "wb") as log:
+        proc = subprocess.Popen([sys.executable, "-m", "kinlib.site", "--out",
+                                 os.path.join(folder, "site"), "--jobs", "1"],
+                                stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                env=env, start_new_session=True, cwd=os.path.dirname(__file__),
+                                preexec_fn=_die_with(os.getpid()))
+    # read by the ``site`` fixture (tests/conftest.py)
+    session.config.kinlib_site_build = _state["site_build"] = {
+        "proc": proc, "folder": folder, "started": time.monotonic()}
+
+
 def pytest_unconfigure(config):
+    build = _state.pop("site_build", None)
+    if build is not None:
+        if build["proc"].poll() is None:
+            build["proc"].kill()
+            build["proc"].wait()
+        import shutil
+
+        shutil.rmtree(build["folder"], ignore_errors=True)
     server = _state.pop("server", None)
     if server is None:
         return

@@ -7,15 +7,12 @@ what shows this test can fail. Needs Chromium at /usr/bin/chromium; without it t
 is skipped, or fails when ``KINLIB_REQUIRE_BROWSER=1`` (CI installs Chromium).
 """
 
-import html
 import io
-import os
 import re
 import time
-from pathlib import Path
 
 import numpy as np
-from browser_helpers import AXIS_SEEN, EMPTY, changed_fraction, joint_axis_mask
+from browser_helpers import EMPTY, changed_fraction
 
 from kinlib.robots import puma560
 
@@ -102,102 +99,3 @@ def test_puma_in_the_live_viewer_and_the_static_page(browser, tmp_path):
     finally:
         context.close()
         viz.delete()
-
-
-NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
-SESSION_KEYS = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL", "KINLIB_MESHCAT_SERVER_PID")
-
-
-def meshcat_servers() -> set[int]:
-    found = set()
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/cmdline", "rb") as fh:
-                    if b"meshcat.servers.zmqserver" in fh.read():
-                        found.add(int(entry))
-            except OSError:
-                continue
-    return found
-
-
-def export_html(name: str, static: bool, monkeypatch) -> str:
-    """Execute notebook ``name`` in its own kernel (its own server, as in class) and export
-    it to HTML with nbconvert, with or without ``KINLIB_STATIC_SCENES=1``."""
-    import nbformat
-    from nbclient import NotebookClient
-    from nbconvert import HTMLExporter
-
-    from kinlib.viz import STATIC_ENV
-
-    with monkeypatch.context() as m:
-        for key in SESSION_KEYS:
-            m.delenv(key, raising=False)
-        m.setenv(STATIC_ENV, "1" if static else "0")
-        nb = nbformat.read(NOTEBOOKS / f"{name}.ipynb", as_version=4)
-        NotebookClient(nb, timeout=120, kernel_name="python3",
-                       resources={"metadata": {"path": str(NOTEBOOKS)}}).execute()
-    body, _ = HTMLExporter().from_notebook_node(nb)
-    return body
-
-
-SCENE_NAMES = "() => { const n = []; viewer.scene.traverse(o => n.push(o.name)); return n; }"
-
-
-def open_scene(browser, page_file: Path, shot: Path) -> tuple[int, list[str]]:
-    """Open an exported page with all http(s) blocked and look at its first scene: the
-    joint-axis pixels of a screenshot, and the names in its three.js scene graph."""
-    context = browser.new_context(viewport={"width": 1000, "height": 800})
-    try:
-        context.route(re.compile(r"^https?://"), lambda route: route.abort())
-        page = context.new_page()
-        page.goto(page_file.as_uri())
-        frame_el = page.locator("iframe").first
-        frame_el.scroll_into_view_if_needed(timeout=15_000)
-        frame = frame_el.element_handle().content_frame()
-        deadline = time.monotonic() + 15.0
-        while True:
-            png = frame_el.screenshot()
-            count = int(joint_axis_mask(png).sum())
-            if count >= AXIS_SEEN or time.monotonic() > deadline:
-                shot.write_bytes(png)
-                break
-            page.wait_for_timeout(200)
-        try:
-            names = frame.evaluate(SCENE_NAMES)
-        except Exception:  # no viewer in the frame (the control case)
-            names = []
-        return count, names
-    finally:
-        context.close()
-
-
-def test_exported_notebook_shows_its_scene_without_a_server(browser, tmp_path, monkeypatch):
-    before = meshcat_servers()
-    static = export_html("08_urdf_and_matrix_stack", True, monkeypatch)
-    live = export_html("08_urdf_and_matrix_stack", False, monkeypatch)
-    assert meshcat_servers() <= before, "a notebook left its meshcat server running"
-    assert static.count('class="kinlib-scene"') >= 1 and 'class="kinlib-scene"' not in live
-    (tmp_path / "static.html").write_text(static, encoding="utf-8")
-    (tmp_path / "live.html").write_text(live, encoding="utf-8")
-    seen, names = open_scene(browser, tmp_path / "static.html", tmp_path / "static.png")
-    assert seen >= AXIS_SEEN, f"exported snapshot: only {seen} joint-axis pixels; see {tmp_path}"
-    assert {"notebook08", "test_robot", "link1", "link4", "joint3"} <= set(names), names[:40]
-    # the control: the live viewer's iframe needs the (now gone) server and shows nothing
-    dead, names = open_scene(browser, tmp_path / "live.html", tmp_path / "live.png")
-    assert dead <= EMPTY and "link1" not in names, f"{dead} pixels without a server?"
-
-
-def test_ik_notebook_exports_its_animated_scene(browser, tmp_path, monkeypatch):
-    from test_viz import page_commands
-
-    before = meshcat_servers()
-    static = export_html("10_inverse_kinematics", True, monkeypatch)
-    assert meshcat_servers() <= before, "a notebook left its meshcat server running"
-    (tmp_path / "static.html").write_text(static, encoding="utf-8")
-    seen, names = open_scene(browser, tmp_path / "static.html", tmp_path / "static.png")
-    assert seen >= AXIS_SEEN, f"only {seen} joint-axis pixels; see {tmp_path}"
-    assert {"notebook10", "puma560", "link1", "link6"} <= set(names), names[:40]
-    page = html.unescape(re.search(r'srcdoc="([^"]*)"', static).group(1))
-    kinds = {c["type"] for c in page_commands(page)}
-    assert "set_animation" in kinds, kinds  # the IK trajectory travels inside the snapshot

@@ -95,9 +95,9 @@ def rigid_transforms(draw):
 
 
 @st.composite
-def screw_friendly_transforms(draw):
-    """Rotation angle in [0.01, π]: the screw axis is well defined."""
-    theta = draw(st.floats(0.01, np.pi))
+def screw_friendly_transforms(draw, max_angle=np.pi):
+    """Rotation angle in [0.01, max_angle]: the screw axis is well defined."""
+    theta = draw(st.floats(0.01, max_angle))
     u = draw(unit_vectors())
     return hom(Rotation.from_rotvec(theta * u).as_matrix(), draw(vec3))
 
@@ -468,7 +468,8 @@ def test_sclerp_endpoints(T0, T1):
 
 
 @settings(max_examples=60, deadline=None)
-@given(rigid_transforms(), screw_friendly_transforms(), rigid_transforms(), st.floats(0.0, 1.0))
+@given(rigid_transforms(), screw_friendly_transforms(max_angle=np.pi - 1e-3), rigid_transforms(),
+       st.floats(0.0, 1.0))
 def test_sclerp_does_not_depend_on_the_world_or_the_body_frame(T0, Trel, G, t):
     # left-invariance: moving both ends by G moves the path by G; right-invariance: changing
     # the body frame by H (attached to the body) changes every pose by H

@@ -1,7 +1,8 @@
 """The static course site (``make site``), built and then read in a real browser, offline.
 
-The module builds the site once with ``python -m kinlib.site`` (every notebook executed in
-its own kernel) into a temporary folder, then opens every page from its ``file://`` URL
+The session builds the site once with ``python -m kinlib.site`` (every notebook executed
+in its own kernel; in the background, see ../conftest.py) into a temporary folder; this
+module opens every page from its ``file://`` URL
 in headless Chromium with all http(s) blocked and asserts:
 
 - no request left the machine, and no console error or uncaught exception (a LaTeX error
@@ -10,25 +11,34 @@ in headless Chromium with all http(s) blocked and asserts:
   notebook's Markdown has ``$…$``/``$$…$$`` pairs, no error node, and no raw TeX
   (``$`` or ``\\command``) left in the text;
 - the meshcat snapshots (08, 09, 10) draw their robot (filled joint-axis pixels and the
-  robot's names in the three.js scene); removing the robot in that same page empties the
-  picture (the control);
+  robot's names in the three.js scene; 10's carries its IK animation); removing the robot
+  in that same page empties the picture (the control);
 - every matplotlib animation plays: *Next frame* shows another image and *Play* moves
   the frame counter;
+- the control for the snapshots: notebook 08 executed and exported *live* shows nothing
+  once its kernel and meshcat server are gone, and leaves no server running;
 - sliders appear as disabled pictures of their state, with a note, and the outline page
   links every notebook, with its learning goals.
 """
 
 from __future__ import annotations
 
+import html
 import json
+import os
 import re
-import subprocess
-import sys
 import time
 from pathlib import Path
 
 import pytest
-from browser_helpers import EMPTY, pixels_changed, solid_axes, wait_for_mask
+from browser_helpers import (
+    AXIS_SEEN,
+    EMPTY,
+    joint_axis_mask,
+    pixels_changed,
+    solid_axes,
+    wait_for_mask,
+)
 
 from kinlib.site import MARKER, outline
 
@@ -41,7 +51,6 @@ SCENES = {"08_urdf_and_matrix_stack": {"test_robot", "link1", "link4", "joint3"}
 SLIDERS = {"04_gimbal_lock": 1, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}
 AXES_SEEN = 60
 ROBOT = 400
-BUILD_TIMEOUT = 600
 
 MATH_STATE = """() => {
 const SKIP = 'pre, code, script, style, textarea, mjx-container, .jp-InputArea, .kl-frozen';
@@ -78,17 +87,6 @@ def math_pairs(name: str) -> int:
         text = re.sub(r"\$\$.+?\$\$", "", text, flags=re.S)
         count += len(display) + len(re.findall(r"\$[^$]+\$", text))
     return count
-
-
-@pytest.fixture(scope="module")
-def site(tmp_path_factory):
-    out = tmp_path_factory.mktemp("site") / "site"
-    start = time.monotonic()
-    run = subprocess.run([sys.executable, "-m", "kinlib.site", "--out", str(out), "--jobs", "2"],
-                         capture_output=True, text=True, timeout=BUILD_TIMEOUT, cwd=ROOT)
-    assert run.returncode == 0, f"the site build failed:\n{run.stdout}\n{run.stderr[-3000:]}"
-    print(f"site built in {time.monotonic() - start:.1f} s")
-    return out
 
 
 @pytest.fixture
@@ -242,3 +240,98 @@ def check_snapshot(page, frame_el, name: str, out: Path) -> None:
     (out / "scene_emptied.png").write_bytes(empty_png)
     assert empty.sum() <= EMPTY, f"{name}: {empty.sum()} joint-axis pixels with no robot"
     assert pixels_changed(png, empty_png) >= ROBOT
+    if name == "10_inverse_kinematics":  # the IK trajectory travels inside the snapshot
+        from test_viz import page_commands
+
+        srcdoc = html.unescape(frame_el.get_attribute("srcdoc"))
+        kinds = {c["type"] for c in page_commands(srcdoc)}
+        assert "set_animation" in kinds, kinds
+
+
+# --- the site's snapshot against a live export (moved here: it reads the site) ---
+
+SESSION_KEYS = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL", "KINLIB_MESHCAT_SERVER_PID")
+
+
+def meshcat_servers() -> set[int]:
+    found = set()
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/cmdline", "rb") as fh:
+                    if b"meshcat.servers.zmqserver" in fh.read():
+                        found.add(int(entry))
+            except OSError:
+                continue
+    return found
+
+
+def export_html(name: str, static: bool, monkeypatch) -> str:
+    """Execute notebook ``name`` in its own kernel (its own server, as in class) and export
+    it to HTML with nbconvert, with or without ``KINLIB_STATIC_SCENES=1``."""
+    import nbformat
+    from nbclient import NotebookClient
+    from nbconvert import HTMLExporter
+
+    from kinlib.viz import STATIC_ENV
+
+    with monkeypatch.context() as m:
+        for key in SESSION_KEYS:
+            m.delenv(key, raising=False)
+        m.setenv(STATIC_ENV, "1" if static else "0")
+        nb = nbformat.read(NOTEBOOKS / f"{name}.ipynb", as_version=4)
+        NotebookClient(nb, timeout=120, kernel_name="python3",
+                       resources={"metadata": {"path": str(NOTEBOOKS)}}).execute()
+    body, _ = HTMLExporter().from_notebook_node(nb)
+    return body
+
+
+
+
+def open_scene(browser, page_file: Path, shot: Path, timeout: float = 15.0
+               ) -> tuple[int, list[str]]:
+    """Open an exported page with all http(s) blocked and look at its first scene: the
+    joint-axis pixels of a screenshot, and the names in its three.js scene graph."""
+    context = browser.new_context(viewport={"width": 1000, "height": 800})
+    try:
+        context.route(re.compile(r"^https?://"), lambda route: route.abort())
+        page = context.new_page()
+        page.goto(page_file.as_uri())
+        frame_el = page.locator("iframe").first
+        frame_el.scroll_into_view_if_needed(timeout=15_000)
+        frame = frame_el.element_handle().content_frame()
+        deadline = time.monotonic() + timeout
+        while True:
+            png = frame_el.screenshot()
+            count = int(joint_axis_mask(png).sum())
+            if count >= AXIS_SEEN or time.monotonic() > deadline:
+                shot.write_bytes(png)
+                break
+            page.wait_for_timeout(200)
+        try:
+            names = frame.evaluate(SCENE_NAMES)
+        except Exception:  # no viewer in the frame (the control case)
+            names = []
+        return count, names
+    finally:
+        context.close()
+
+
+def test_exported_notebook_shows_its_scene_without_a_server(browser, site, tmp_path,
+                                                           monkeypatch):
+    """The site's page of notebook 08 (executed with ``KINLIB_STATIC_SCENES=1``) draws the
+    robot with all http blocked; the control, notebook 08 executed and exported live in its
+    own kernel, shows nothing once that kernel (and its meshcat server) is gone."""
+    before = meshcat_servers()
+    live = export_html("08_urdf_and_matrix_stack", False, monkeypatch)
+    assert meshcat_servers() <= before, "a notebook left its meshcat server running"
+    static = (site / "08_urdf_and_matrix_stack.html").read_text(encoding="utf-8")
+    assert static.count('class="kinlib-scene"') >= 1 and 'class="kinlib-scene"' not in live
+    (tmp_path / "live.html").write_text(live, encoding="utf-8")
+    seen, names = open_scene(browser, site / "08_urdf_and_matrix_stack.html",
+                             tmp_path / "static.png")
+    assert seen >= AXIS_SEEN, f"the site's snapshot: {seen} joint-axis pixels; see {tmp_path}"
+    assert {"notebook08", "test_robot", "link1", "link4", "joint3"} <= set(names), names[:40]
+    # the control: the live viewer's iframe needs the (now gone) server and shows nothing
+    dead, names = open_scene(browser, tmp_path / "live.html", tmp_path / "live.png", timeout=4)
+    assert dead <= EMPTY and "link1" not in names, f"{dead} pixels without a server?"
