@@ -289,9 +289,21 @@ def test_notebook_runs_in_jupyterlab(lab, browser, name, tmp_path):
 def take_readme_shot(page, name: str, tmp_path: Path) -> None:
     """The README's picture of ``name``: the first viewer or slider in view, sidebar hidden."""
     target = Path(os.environ.get("KINLIB_SCREENSHOTS") or tmp_path) / README_SHOTS[name]
+    target.parent.mkdir(parents=True, exist_ok=True)
     page.keyboard.press("Control+b")  # hide the file browser
     anchor = viewer_frames(page) if viewer_frames(page).count() else page.locator(
         ".widget-slider")
     anchor.first.scroll_into_view_if_needed()
     page.wait_for_timeout(1500)
     page.screenshot(path=str(target))
+
+
+def test_readme_shows_the_screenshots_this_suite_takes():
+    from PIL import Image
+
+    readme = (NOTEBOOKS.parent / "README.md").read_text()
+    shots = re.findall(r"\]\((notebooks/screenshots/[^)]+\.png)\)", readme)
+    assert sorted(Path(s).name for s in shots) == sorted(README_SHOTS.values()), shots
+    for shot in shots:
+        with Image.open(NOTEBOOKS.parent / shot) as im:  # the suite's viewport
+            assert im.size == (1280, 900), (shot, im.size)
