@@ -80,6 +80,7 @@ def test_lab_leaves_nothing_running(mode, tmp_path, browser):
     env = dict(os.environ, RECORD=str(record), MODE=mode,
                NOTEBOOKS=str(TESTS.parent / "notebooks"),
                PYTHONPATH=os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")]))
+    env.pop("PYTEST_ADDOPTS", None)  # the outer run's options are not the inner one's
     inner = subprocess.Popen([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
                               "-p", "no:randomly", str(tmp_path / "test_inner.py")],
                              cwd=tmp_path, env=env, stdout=subprocess.PIPE,
@@ -96,6 +97,7 @@ def test_lab_leaves_nothing_running(mode, tmp_path, browser):
     finally:
         if inner.poll() is None:
             os.killpg(inner.pid, signal.SIGKILL)
+    assert record.exists(), f"the inner test did not get as far as the record:\n{out[-3000:]}"
     facts = json.loads(record.read_text())
     running = " ".join(facts["processes"].values())
     assert "jupyter" in running and "ipykernel" in running \
