@@ -13,16 +13,20 @@ is started. See DEVELOPERS.md.
 The course site the browser tests read (``tests/test_site.py``) is built in the background
 from ``pytest_collection_finish`` when a collected test asks for it: ``python -m kinlib.site``
 runs on the second core while the other tests run (one notebook at a time), and the
-``site`` fixture waits for it. ``pytest_unconfigure`` stops it if it is still running.
+``site`` fixture (here) waits for it. ``pytest_unconfigure`` stops it if it is still running.
 """
 
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
 import time
+from pathlib import Path
+
+import pytest
 
 from kinlib._viewer_server import ViewerServer, _die_with, start_server
 
@@ -66,22 +70,43 @@ def pytest_configure(config):
     os.environ[PID_ENV] = str(server.pid)
 
 
+def _start_site_build(jobs: int) -> dict:
+    """``python -m kinlib.site`` into a temporary folder, in the background (it dies with
+    pytest); its log is the folder's build.log."""
+    folder = tempfile.mkdtemp(prefix="kinlib-site-")
+    with open(os.path.join(folder, "build.log"), "wb") as log:
+        proc = subprocess.Popen([sys.executable, "-m", "kinlib.site", "--out",
+                                 os.path.join(folder, "site"), "--jobs", str(jobs)],
+                                stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                start_new_session=True, cwd=os.path.dirname(__file__),
+                                preexec_fn=_die_with(os.getpid()))
+    _state["site_build"] = {"proc": proc, "folder": folder}
+    return _state["site_build"]
+
+
 def pytest_collection_finish(session):
     if hasattr(session.config, "workerinput") or session.config.option.collectonly:
         return
-    if not any("site" in getattr(item, "fixturenames", ()) for item in session.items):
-        return
-    folder = tempfile.mkdtemp(prefix="kinlib-site-")
-    env = {k: v for k, v in os.environ.items() if not k.startswith("KINLIB_MESHCAT_")}
-    with open(os.path.join(folder, "build.log"), "wb") as log:
-        proc = subprocess.Popen([sys.executable, "-m", "kinlib.site", "--out",
-                                 os.path.join(folder, "site"), "--jobs", "1"],
-                                stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                env=env, start_new_session=True, cwd=os.path.dirname(__file__),
-                                preexec_fn=_die_with(os.getpid()))
-    # read by the ``site`` fixture (tests/conftest.py)
-    session.config.kinlib_site_build = _state["site_build"] = {
-        "proc": proc, "folder": folder, "started": time.monotonic()}
+    if any("site" in getattr(item, "fixturenames", ()) for item in session.items):
+        _start_site_build(jobs=1)  # one notebook at a time: the tests run on the other core
+
+
+@pytest.fixture(scope="session")
+def site():
+    """The course site (a folder), from the build started when the session was collected,
+    or (when none was, e.g. in an xdist worker) from one started now. Fails with the build's
+    log if the build failed."""
+    build = _state.get("site_build") or _start_site_build(jobs=2)
+    waited = time.monotonic()
+    try:
+        build["proc"].wait(timeout=600)
+    except subprocess.TimeoutExpired:
+        pytest.fail("the site build did not finish in 600 s")
+    with open(os.path.join(build["folder"], "build.log"), errors="replace") as fh:
+        log = fh.read()
+    assert build["proc"].returncode == 0, f"the site build failed:\n{log[-4000:]}"
+    print(f"site build: {log.strip().splitlines()[-1]} (waited {time.monotonic() - waited:.1f} s)")
+    return Path(build["folder"]) / "site"
 
 
 def pytest_unconfigure(config):
@@ -90,8 +115,6 @@ def pytest_unconfigure(config):
         if build["proc"].poll() is None:
             build["proc"].kill()
             build["proc"].wait()
-        import shutil
-
         shutil.rmtree(build["folder"], ignore_errors=True)
     server = _state.pop("server", None)
     if server is None:

@@ -20,6 +20,9 @@ ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftsha
         "--no-first-run"]
 AXIS_SEEN = 150  # joint-axis pixels needed to call a robot drawn
 EMPTY = 20  # at most this many on an empty scene
+AXES_SEEN = 60  # inside pixels of joint-axis cylinders (:func:`solid_axes`) for a robot
+ROBOT = 400  # pixels that must change when the robot is removed from its viewer
+STILL = 5  # at most this many change between two screenshots of an untouched viewer
 
 
 def unavailable(reason: str):
@@ -107,3 +110,55 @@ def wait_for_mask(shoot, mask_of, accept, timeout: float = 15.0, pause: float = 
         if accept(mask) or time.monotonic() > deadline:
             return png, mask
         time.sleep(pause)
+
+
+def element_shooter(element):
+    """A function taking a PNG screenshot of ``element`` (a playwright locator), scrolled
+    into view first."""
+    def shoot() -> bytes:
+        element.scroll_into_view_if_needed()
+        return element.screenshot()
+
+    return shoot
+
+
+def settled(shoot, tries: int = 20) -> bytes:
+    """A screenshot once two in a row agree (the viewer has finished drawing)."""
+    last = shoot()
+    for _ in range(tries):
+        time.sleep(0.15)
+        png = shoot()
+        if pixels_changed(last, png) <= STILL:
+            return png
+        last = png
+    return last
+
+
+def assert_robot_drawn(frame_el, what: str, shot) -> bytes:
+    """The meshcat viewer in iframe ``frame_el`` draws a robot: at least ``AXES_SEEN``
+    filled joint-axis pixels once the picture has settled. The picture is written to
+    ``shot`` and returned."""
+    shoot = element_shooter(frame_el)
+    wait_for_mask(shoot, solid_axes, lambda m: m.sum() >= AXES_SEEN, timeout=20)
+    png = settled(shoot)
+    shot.write_bytes(png)
+    axes = int(solid_axes(png).sum())
+    assert axes >= AXES_SEEN, f"{what} shows {axes} joint-axis pixels; see {shot}"
+    return png
+
+
+def assert_removal_empties(frame_el, drawn: bytes, scene_path: str, what: str,
+                           shot) -> tuple[int, int]:
+    """The control for :func:`assert_robot_drawn`: delete ``scene_path`` in that same
+    viewer; at most ``EMPTY`` joint-axis pixels may be left and at least ``ROBOT`` pixels
+    must have changed from the ``drawn`` picture. Returns (pixels left, pixels changed)."""
+    frame = frame_el.element_handle().content_frame()
+    frame.evaluate(f"() => viewer.handle_command({{type: 'delete', path: '{scene_path}'}})")
+    png, empty = wait_for_mask(element_shooter(frame_el), solid_axes,
+                               lambda m: m.sum() <= EMPTY)
+    shot.write_bytes(png)
+    assert empty.sum() <= EMPTY, f"{what}: {empty.sum()} joint-axis pixels with the robot " \
+                                 "deleted: the pixel check cannot tell an empty scene"
+    gone = pixels_changed(drawn, png)
+    assert gone >= ROBOT, f"{what}: removing the robot changed only {gone} pixels"
+    return int(empty.sum()), gone

@@ -1,5 +1,5 @@
-"""Shared fixtures: the visualizer tests' prefixes (the meshcat server itself: ../conftest.py)
-and the browser tests' Chromium."""
+"""Shared fixtures: the visualizer tests' prefixes and the browser tests' Chromium (the
+meshcat server and the course site: ../conftest.py)."""
 
 import uuid
 
@@ -45,32 +45,3 @@ def browser():
 
     with launch() as b:
         yield b
-
-
-@pytest.fixture(scope="session")
-def site(request, tmp_path_factory):
-    """The course site, built by ``python -m kinlib.site``: the build the root conftest
-    started in the background when the session was collected, or (when there is none) a
-    build made now. Fails with the build's output if it failed."""
-    import subprocess
-    import sys
-    import time
-    from pathlib import Path
-
-    build = getattr(request.config, "kinlib_site_build", None)
-    if build is None:
-        out = tmp_path_factory.mktemp("site") / "site"
-        run = subprocess.run([sys.executable, "-m", "kinlib.site", "--out", str(out),
-                              "--jobs", "2"], capture_output=True, text=True, timeout=600,
-                             cwd=Path(__file__).resolve().parents[1])
-        assert run.returncode == 0, f"the site build failed:\n{run.stdout}\n{run.stderr}"
-        return out
-    waited = time.monotonic()
-    try:
-        build["proc"].wait(timeout=600)
-    except subprocess.TimeoutExpired:
-        pytest.fail("the site build did not finish in 600 s")
-    log = Path(build["folder"], "build.log").read_text(errors="replace")
-    assert build["proc"].returncode == 0, f"the site build failed:\n{log[-4000:]}"
-    print(f"site build: {log.strip().splitlines()[-1]} (waited {time.monotonic() - waited:.1f} s)")
-    return Path(build["folder"]) / "site"

@@ -32,10 +32,11 @@ import urllib.request
 from pathlib import Path
 
 from kinlib._viewer_server import _die_with
+from kinlib.site import SESSION_ENV
+from kinlib.viz import STATIC_ENV
 
 MARK = "KINLIB_LAB_RUN"
-SESSION_KEYS = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL", "KINLIB_MESHCAT_SERVER_PID",
-                "KINLIB_STATIC_SCENES")
+SESSION_KEYS = SESSION_ENV + (STATIC_ENV,)  # the kernels draw live, on servers of their own
 SETTINGS = {
     # every cell in the DOM (the default windowing drops cells scrolled out of view)
     "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {"windowingMode": "none"},
@@ -169,7 +170,7 @@ class Lab:
                         continue
         killed = []
         deadline = time.monotonic() + 10.0
-        while (left := marked_processes(self.marker)) and time.monotonic() < deadline:
+        while marked_processes(self.marker) and time.monotonic() < deadline:
             time.sleep(0.2)  # kernels and meshcat servers shutting down
         for pid in marked_processes(self.marker):
             try:
@@ -177,5 +178,4 @@ class Lab:
                 killed.append(pid)
             except ProcessLookupError:
                 pass
-        del left
         return killed

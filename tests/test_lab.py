@@ -31,7 +31,15 @@ import time
 from pathlib import Path
 
 import pytest
-from browser_helpers import EMPTY, pixels_changed, solid_axes, wait_for_mask
+from browser_helpers import (
+    STILL,
+    assert_removal_empties,
+    assert_robot_drawn,
+    element_shooter,
+    pixels_changed,
+    settled,
+    solid_axes,
+)
 from lab_harness import Lab, marked_processes
 
 NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
@@ -134,14 +142,6 @@ def viewer_frames(page):
                         "iframe[src*='/static/']")
 
 
-def viewer_shooter(frame_el):
-    def shoot():
-        frame_el.scroll_into_view_if_needed()
-        return frame_el.screenshot()
-
-    return shoot
-
-
 def drag_slider(page, slider, dx: float) -> None:
     """Drag a slider's handle ``dx`` pixels with the mouse, as a student would."""
     handle = slider.locator(".noUi-handle").first
@@ -179,27 +179,12 @@ def check_gimbal_slider(page, out: Path) -> None:
 
 
 MOVED = 200  # pixels of a viewer that must change when a joint slider turns the robot
-STILL = 5  # at most this many change between two screenshots of an untouched viewer
-ROBOT = 400  # pixels that must change when the robot is removed from its viewer
-AXES_SEEN = 60  # inside pixels of joint-axis cylinders needed to call a robot drawn
-
-
-def settled(shoot, tries: int = 20) -> bytes:
-    """A screenshot once two in a row agree (the viewer has finished drawing)."""
-    last = shoot()
-    for _ in range(tries):
-        time.sleep(0.15)
-        png = shoot()
-        if pixels_changed(last, png) <= STILL:
-            return png
-        last = png
-    return last
 
 
 def check_panel_slider(page, out: Path) -> None:
     """Drag joint 1's slider of the joint panel: the robot in the viewer must move. The
     control: two screenshots of the untouched viewer agree."""
-    shoot = viewer_shooter(viewer_frames(page).first)
+    shoot = element_shooter(viewer_frames(page).first)
     before = settled(shoot)
     assert pixels_changed(before, shoot()) <= STILL, "the viewer changes by itself"
     slider = page.locator(".widget-slider").first
@@ -219,25 +204,14 @@ def check_panel_slider(page, out: Path) -> None:
                              f"{changed} pixels of the viewer changed; see {out}"
 
 
-def check_viewer(page, frame_el, name: str, k: int, out: Path) -> None:
+def check_viewer(frame_el, name: str, k: int, out: Path) -> None:
     """The viewer draws a robot: filled orange joint-axis cylinders, and many pixels that
     go when the robot is removed from this viewer (the control, which must leave none)."""
-    shoot = viewer_shooter(frame_el)
-    wait_for_mask(shoot, solid_axes, lambda m: m.sum() >= AXES_SEEN, timeout=20)
-    png = settled(shoot)
-    axes = int(solid_axes(png).sum())
-    (out / f"viewer{k}.png").write_bytes(png)
-    assert axes >= AXES_SEEN, f"{name}: viewer {k} shows {axes} joint-axis pixels; see {out}"
-    frame = frame_el.element_handle().content_frame()
-    frame.evaluate(f"() => viewer.handle_command({{type: 'delete', "
-                   f"path: '/meshcat/notebook{name[:2]}'}})")  # the notebook's prefix
-    empty_png, empty = wait_for_mask(shoot, solid_axes, lambda m: m.sum() <= EMPTY)
-    (out / f"viewer{k}_emptied.png").write_bytes(empty_png)
-    assert empty.sum() <= EMPTY, f"{name}: {empty.sum()} joint-axis pixels with the robot " \
-                                 "deleted: the pixel check cannot tell an empty scene"
-    gone = pixels_changed(png, empty_png)
-    assert gone >= ROBOT, f"{name}: removing the robot changed only {gone} pixels"
-    print(f"{name} viewer {k}: {axes} joint-axis pixels ({int(empty.sum())} when emptied), "
+    what = f"{name}: viewer {k}"
+    png = assert_robot_drawn(frame_el, what, out / f"viewer{k}.png")
+    left, gone = assert_removal_empties(frame_el, png, f"/meshcat/notebook{name[:2]}", what,
+                                        out / f"viewer{k}_emptied.png")
+    print(f"{what}: {int(solid_axes(png).sum())} joint-axis pixels ({left} when emptied), "
           f"{gone} robot pixels")
 
 
@@ -276,7 +250,7 @@ def test_notebook_runs_in_jupyterlab(lab, browser, name, tmp_path):
         if name in README_SHOTS:
             take_readme_shot(page, name, tmp_path)
         for k in range(frames.count()):
-            check_viewer(page, frames.nth(k), name, k, tmp_path)
+            check_viewer(frames.nth(k), name, k, tmp_path)
         assert not messages, f"{name}: JavaScript errors in JupyterLab: {messages[:3]}"
         print(f"{name}: {n_code} cells in {seconds:.1f} s")
     finally:

@@ -27,16 +27,16 @@ import html
 import json
 import os
 import re
-import time
 from pathlib import Path
 
 import pytest
 from browser_helpers import (
     AXIS_SEEN,
     EMPTY,
+    assert_removal_empties,
+    assert_robot_drawn,
+    element_shooter,
     joint_axis_mask,
-    pixels_changed,
-    solid_axes,
     wait_for_mask,
 )
 
@@ -49,8 +49,6 @@ SCENES = {"08_urdf_and_matrix_stack": {"test_robot", "link1", "link4", "joint3"}
           "09_denavit_hartenberg": {"puma560", "link1", "link6"},
           "10_inverse_kinematics": {"puma560", "link1", "link6", "line"}}
 SLIDERS = {"04_gimbal_lock": 1, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}
-AXES_SEEN = 60
-ROBOT = 400
 
 MATH_STATE = """() => {
 const SKIP = 'pre, code, script, style, textarea, mjx-container, .jp-InputArea, .kl-frozen';
@@ -198,7 +196,7 @@ def test_page_renders_offline(site, offline_page, name, tmp_path):
     scenes = page.locator(".kinlib-scene iframe")
     assert scenes.count() == (1 if name in SCENES else 0), f"{name}: {scenes.count()} scenes"
     if name in SCENES:
-        check_snapshot(page, scenes.first, name, tmp_path)
+        check_snapshot(scenes.first, name, tmp_path)
     assert not log["errors"], f"{name}: console errors: {log['errors'][:5]}"
 
 
@@ -222,24 +220,13 @@ def check_players(page, name: str) -> None:
         page.locator(f"button[onclick='anim{anim}.pause_animation()']").click()
 
 
-def check_snapshot(page, frame_el, name: str, out: Path) -> None:
-    def shoot():
-        frame_el.scroll_into_view_if_needed()
-        return frame_el.screenshot()
-
-    png, mask = wait_for_mask(shoot, solid_axes, lambda m: m.sum() >= AXES_SEEN, timeout=20)
-    (out / "scene.png").write_bytes(png)
-    assert mask.sum() >= AXES_SEEN, f"{name}: the snapshot shows {mask.sum()} joint-axis " \
-                                    f"pixels; see {out}"
+def check_snapshot(frame_el, name: str, out: Path) -> None:
+    png = assert_robot_drawn(frame_el, f"{name}: the snapshot", out / "scene.png")
     frame = frame_el.element_handle().content_frame()
     names = set(frame.evaluate(SCENE_NAMES))
     assert SCENES[name] <= names, f"{name}: missing {SCENES[name] - names} in the scene"
-    frame.evaluate(f"() => viewer.handle_command({{type: 'delete', "
-                   f"path: '/meshcat/notebook{name[:2]}'}})")
-    empty_png, empty = wait_for_mask(shoot, solid_axes, lambda m: m.sum() <= EMPTY)
-    (out / "scene_emptied.png").write_bytes(empty_png)
-    assert empty.sum() <= EMPTY, f"{name}: {empty.sum()} joint-axis pixels with no robot"
-    assert pixels_changed(png, empty_png) >= ROBOT
+    assert_removal_empties(frame_el, png, f"/meshcat/notebook{name[:2]}", name,
+                           out / "scene_emptied.png")
     if name == "10_inverse_kinematics":  # the IK trajectory travels inside the snapshot
         from test_viz import page_commands
 
@@ -249,9 +236,6 @@ def check_snapshot(page, frame_el, name: str, out: Path) -> None:
 
 
 # --- the site's snapshot against a live export (moved here: it reads the site) ---
-
-SESSION_KEYS = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL", "KINLIB_MESHCAT_SERVER_PID")
-
 
 def meshcat_servers() -> set[int]:
     found = set()
@@ -266,26 +250,16 @@ def meshcat_servers() -> set[int]:
     return found
 
 
-def export_html(name: str, static: bool, monkeypatch) -> str:
-    """Execute notebook ``name`` in its own kernel (its own server, as in class) and export
-    it to HTML with nbconvert, with or without ``KINLIB_STATIC_SCENES=1``."""
-    import nbformat
-    from nbclient import NotebookClient
+def export_live(name: str) -> str:
+    """Execute notebook ``name`` in its own kernel with live scenes (its own meshcat server,
+    as in class) and export it to HTML with nbconvert's default template."""
     from nbconvert import HTMLExporter
 
-    from kinlib.viz import STATIC_ENV
+    from kinlib.site import execute_notebook
 
-    with monkeypatch.context() as m:
-        for key in SESSION_KEYS:
-            m.delenv(key, raising=False)
-        m.setenv(STATIC_ENV, "1" if static else "0")
-        nb = nbformat.read(NOTEBOOKS / f"{name}.ipynb", as_version=4)
-        NotebookClient(nb, timeout=120, kernel_name="python3",
-                       resources={"metadata": {"path": str(NOTEBOOKS)}}).execute()
+    nb = execute_notebook(NOTEBOOKS / f"{name}.ipynb", timeout=120, static=False)
     body, _ = HTMLExporter().from_notebook_node(nb)
     return body
-
-
 
 
 def open_scene(browser, page_file: Path, shot: Path, timeout: float = 15.0
@@ -300,14 +274,10 @@ def open_scene(browser, page_file: Path, shot: Path, timeout: float = 15.0
         frame_el = page.locator("iframe").first
         frame_el.scroll_into_view_if_needed(timeout=15_000)
         frame = frame_el.element_handle().content_frame()
-        deadline = time.monotonic() + timeout
-        while True:
-            png = frame_el.screenshot()
-            count = int(joint_axis_mask(png).sum())
-            if count >= AXIS_SEEN or time.monotonic() > deadline:
-                shot.write_bytes(png)
-                break
-            page.wait_for_timeout(200)
+        png, mask = wait_for_mask(element_shooter(frame_el), joint_axis_mask,
+                                  lambda m: m.sum() >= AXIS_SEEN, timeout=timeout)
+        shot.write_bytes(png)
+        count = int(mask.sum())
         try:
             names = frame.evaluate(SCENE_NAMES)
         except Exception:  # no viewer in the frame (the control case)
@@ -317,13 +287,12 @@ def open_scene(browser, page_file: Path, shot: Path, timeout: float = 15.0
         context.close()
 
 
-def test_exported_notebook_shows_its_scene_without_a_server(browser, site, tmp_path,
-                                                           monkeypatch):
+def test_exported_notebook_shows_its_scene_without_a_server(browser, site, tmp_path):
     """The site's page of notebook 08 (executed with ``KINLIB_STATIC_SCENES=1``) draws the
     robot with all http blocked; the control, notebook 08 executed and exported live in its
     own kernel, shows nothing once that kernel (and its meshcat server) is gone."""
     before = meshcat_servers()
-    live = export_html("08_urdf_and_matrix_stack", False, monkeypatch)
+    live = export_live("08_urdf_and_matrix_stack")
     assert meshcat_servers() <= before, "a notebook left its meshcat server running"
     static = (site / "08_urdf_and_matrix_stack.html").read_text(encoding="utf-8")
     assert static.count('class="kinlib-scene"') >= 1 and 'class="kinlib-scene"' not in live

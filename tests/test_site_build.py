@@ -113,24 +113,20 @@ def test_animation_players_lose_the_icon_font_but_keep_their_buttons():
     assert "◀" in out and "▶" in out and "❚❚" in out
 
 
-def test_mathjax_is_checked_against_its_pinned_hash(tmp_path):
+def test_mathjax_is_checked_against_its_pinned_hash(tmp_path, monkeypatch):
+    import kinlib.site as site
+
     path = ensure_mathjax()  # fetched once into build/ (npm pack) and verified
     assert path.stat().st_size > 1_000_000
     fake = tmp_path / "tex-svg-full.js"
     fake.write_text("// not MathJax")
     assert ensure_mathjax(fake) == fake  # a file given explicitly is used as it is
-    import kinlib.site as site
-
     bad = tmp_path / "build" / "tex-svg-full.js"
     bad.parent.mkdir()
     bad.write_text("// tampered")
-    original = site.MATHJAX_FILE
-    site.MATHJAX_FILE = bad
-    try:
-        with pytest.raises(KinlibError, match=r"sha256 \w+ is not MathJax 3\.2\.2's"):
-            ensure_mathjax()
-    finally:
-        site.MATHJAX_FILE = original
+    monkeypatch.setattr(site, "MATHJAX_FILE", bad)
+    with pytest.raises(KinlibError, match=r"sha256 \w+ is not MathJax 3\.2\.2's"):
+        ensure_mathjax()
 
 
 def test_build_refuses_bad_arguments_and_foreign_folders(tmp_path):

@@ -26,14 +26,17 @@ import re
 import shutil
 import time
 from concurrent.futures import ProcessPoolExecutor
+from contextlib import nullcontext
 from dataclasses import dataclass
+from itertools import repeat
+from multiprocessing import get_context
 from pathlib import Path
 
 from ..errors import KinlibError
 from ._widgets import freeze_widgets
 
 __all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "export_page",
-           "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
+           "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS", "SESSION_ENV"]
 
 ROOT = Path(__file__).resolve().parents[2]
 TEMPLATES = Path(__file__).resolve().parent / "templates"
@@ -112,8 +115,7 @@ class PageInfo:
 
 
 def _markdown_cells(nb) -> list[str]:
-    return ["".join(c.source) if isinstance(c.source, list) else c.source
-            for c in nb.cells if c.cell_type == "markdown"]
+    return [c.source for c in nb.cells if c.cell_type == "markdown"]
 
 
 def outline(notebooks: Path | str | None = None) -> list[PageInfo]:
@@ -141,7 +143,11 @@ def outline(notebooks: Path | str | None = None) -> list[PageInfo]:
 
 
 class _Env:
-    """Environment of the kernels: static scenes, and no test session's meshcat server."""
+    """Environment of the kernels: static scenes (or live ones, ``static=False``), and no
+    test session's meshcat server."""
+
+    def __init__(self, static: bool = True):
+        self.static = static
 
     def __enter__(self):
         from ..viz import STATIC_ENV
@@ -150,7 +156,7 @@ class _Env:
         self.saved = {k: os.environ.get(k) for k in keys}
         for k in SESSION_ENV:
             os.environ.pop(k, None)
-        os.environ[STATIC_ENV] = "1"
+        os.environ[STATIC_ENV] = "1" if self.static else "0"
         return self
 
     def __exit__(self, *exc):
@@ -161,10 +167,11 @@ class _Env:
                 os.environ[k] = v
 
 
-def execute_notebook(path: Path | str, timeout: float = 600.0):
+def execute_notebook(path: Path | str, timeout: float = 600.0, *, static: bool = True):
     """Run the notebook at ``path`` in a fresh ``python3`` kernel (working directory: its
-    folder; static meshcat scenes) and return the executed node, widget state included.
-    A cell that raises becomes a :class:`KinlibError` naming the notebook and the cell."""
+    folder; static meshcat scenes unless ``static=False``, with a meshcat server of its
+    own) and return the executed node, widget state included. A cell that raises becomes a
+    :class:`KinlibError` naming the notebook and the cell."""
     import nbformat
     from nbclient import NotebookClient
     from nbclient.exceptions import CellExecutionError, CellTimeoutError
@@ -174,7 +181,7 @@ def execute_notebook(path: Path | str, timeout: float = 600.0):
     client = NotebookClient(nb, timeout=timeout, kernel_name="python3",
                             resources={"metadata": {"path": str(path.parent)}},
                             store_widget_state=True)
-    with _Env():
+    with _Env(static):
         try:
             client.execute()
         except CellTimeoutError as exc:
@@ -187,14 +194,13 @@ def execute_notebook(path: Path | str, timeout: float = 600.0):
     return nb
 
 
-def _nav(pages: list[PageInfo], here: int | None) -> str:
+def _nav(pages: list[PageInfo], here: int) -> str:
     def link(i, label):
         p = pages[i]
         return f'<a href="{p.href}">{label} {html.escape(f"{p.number:02d} · {p.title}")}</a>'
 
-    left = link(here - 1, "←") if here is not None and here > 0 else "<span></span>"
-    right = (link(here + 1, "→") if here is not None and here + 1 < len(pages)
-             else "<span></span>")
+    left = link(here - 1, "←") if here > 0 else "<span></span>"
+    right = link(here + 1, "→") if here + 1 < len(pages) else "<span></span>"
     return (f'<nav class="kl-nav">{left}<a href="index.html">Course outline</a>{right}</nav>')
 
 
@@ -358,19 +364,11 @@ def build_site(out: Path | str = "site", notebooks: Path | str | None = None, *,
     (out / "index.html").write_text(index_html(pages), encoding="utf-8")
     paths = [str(folder / f"{n}.ipynb") for n in chosen]
     seconds = {}
-    if jobs == 1:
-        for path in paths:
-            name, t = _build_one(path, str(out), pages, timeout)
+    with (ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("spawn")) if jobs > 1
+          else nullcontext()) as pool:
+        run = map if pool is None else pool.map  # in order; a failure is raised here
+        for name, t in run(_build_one, paths, repeat(str(out)), repeat(pages),
+                           repeat(timeout)):
             seconds[name] = t
             log(f"  {name}: {t:.1f} s")
-    else:
-        import multiprocessing
-
-        ctx = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
-            futures = [pool.submit(_build_one, p, str(out), pages, timeout) for p in paths]
-            for fut in futures:
-                name, t = fut.result()
-                seconds[name] = t
-                log(f"  {name}: {t:.1f} s")
     return seconds
