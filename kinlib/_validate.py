@@ -130,6 +130,14 @@ def unit_rows(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def as_unit_vectors(x, name: str = "axis", *, eps: float = 1e-12) -> np.ndarray:
     """``x`` as unit 3-vectors (normalised); a zero (or near-zero) vector is an error."""
     a = as_array(x, name, (3,))
+    if a.ndim == 1:  # one vector (a joint axis): the same scaling, without batch overhead
+        x0, x1, x2 = a.tolist()
+        big = max(abs(x0), abs(x1), abs(x2))
+        if big > 0:
+            u0, u1, u2 = x0 / big, x1 / big, x2 / big
+            n = (u0 * u0 + u1 * u1 + u2 * u2) ** 0.5
+            if n * big > eps:
+                return np.array([u0 / n, u1 / n, u2 / n])
     u, norm = unit_rows(a)
     small = norm <= eps
     if np.any(small):

@@ -20,7 +20,15 @@ from xml.parsers import expat
 import numpy as np
 
 from .errors import KinlibError, URDFError
-from .model import Joint, Link, Mimic, Visual, origin_from_xyz_rpy, xyz_rpy_from_origin
+from .model import (
+    Joint,
+    Link,
+    Mimic,
+    Visual,
+    built_transform,
+    origin_from_xyz_rpy,
+    xyz_rpy_from_origin,
+)
 
 __all__ = ["load_urdf", "robot_to_urdf", "MAX_BYTES"]
 
@@ -151,11 +159,13 @@ def _name(el: _El, src: _Source, attr="name"):
 
 
 def _origin(el: _El, src: _Source):
+    """The ``<origin>`` of ``el``, built from numbers ``_floats`` has checked (finite), so
+    the model takes it without checking it again (``built_transform``)."""
     o = _one(el, "origin", src, required=False)
     if o is None:
-        return np.eye(4)
-    return origin_from_xyz_rpy(_floats(o, "xyz", 3, src, (0, 0, 0)),
-                               _floats(o, "rpy", 3, src, (0, 0, 0)))
+        return built_transform(np.eye(4))
+    return built_transform(origin_from_xyz_rpy(_floats(o, "xyz", 3, src, (0, 0, 0)),
+                                               _floats(o, "rpy", 3, src, (0, 0, 0))))
 
 
 def _visual(vis: _El, materials: dict, src: _Source):

@@ -119,22 +119,38 @@ def run_all(page, name: str, timeout: float = RUN_TIMEOUT) -> list[str]:
         page.wait_for_timeout(300)
 
 
-def saved_errors(lab: Lab, page, name: str) -> list[str]:
-    """Save the notebook from JupyterLab (Ctrl+S) and list the error outputs in the file."""
+#: the notebook's tab while it has unsaved changes
+DIRTY_TAB = "#jp-main-dock-panel .lm-TabBar-tab.jp-mod-dirty"
+
+
+def saved_notebook(lab: Lab, page, name: str, timeout: float = 60.0) -> dict:
+    """Save the notebook from JupyterLab (Ctrl+S) and read the file it wrote.
+
+    The Jupyter server writes the file in place (it truncates it, then writes), so the file
+    is read only once JupyterLab says the save is done (the tab's unsaved-changes mark has
+    gone), and read again if it is still not complete JSON."""
     page.locator(".jp-NotebookPanel:not(.lm-mod-hidden) .jp-Notebook").click(
         position={"x": 5, "y": 5})
     page.keyboard.press("Control+s")
     path = lab.root / f"{name}.ipynb"
-    deadline = time.monotonic() + 20
+    deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
-        nb = json.loads(path.read_text())
-        code = [c for c in nb["cells"] if c["cell_type"] == "code"]
-        if code and all(c.get("execution_count") for c in code[:1]):
-            return [f"cell {i}: {o.get('ename')}: {o.get('evalue')}"
-                    for i, c in enumerate(nb["cells"]) for o in c.get("outputs", [])
-                    if o.get("output_type") == "error"]
+        if page.locator(DIRTY_TAB).count() == 0:
+            try:
+                nb = json.loads(path.read_text())
+            except json.JSONDecodeError:  # caught between the truncation and the write
+                nb = None
+            code = [c for c in nb["cells"] if c["cell_type"] == "code"] if nb else []
+            if code and all(c.get("execution_count") for c in code):
+                return nb
         page.wait_for_timeout(250)
-    raise AssertionError(f"{name}: JupyterLab did not save the notebook in 20 s")
+    raise AssertionError(f"{name}: JupyterLab did not save the notebook in {timeout:g} s")
+
+
+def error_outputs(nb: dict) -> list[str]:
+    return [f"cell {i}: {o.get('ename')}: {o.get('evalue')}"
+            for i, c in enumerate(nb["cells"]) for o in c.get("outputs", [])
+            if o.get("output_type") == "error"]
 
 
 def viewer_frames(page):
@@ -233,7 +249,8 @@ def test_notebook_runs_in_jupyterlab(lab, browser, name, tmp_path):
         assert not tracebacks, f"{name}: error output in the page:\n{tracebacks[0]}"
         assert len(prompts) == n_code and all(re.fullmatch(r"\[\d+\]:", p) for p in prompts), \
             f"{name}: cells that did not run: {prompts}"
-        errors = saved_errors(lab, page, name)
+        saved = saved_notebook(lab, page, name)
+        errors = error_outputs(saved)
         assert not errors, f"{name}: error outputs in the saved notebook: {errors}"
 
         frames = viewer_frames(page)

@@ -344,3 +344,26 @@ def test_tree_errors():
         Joint("j", "revolute", "a", "b", axis=(0, 0, 0))
     with pytest.raises(KinlibError, match="no joint 'q'"):
         Robot("r", L, [Joint("j", "fixed", "a", "b")]).joint("q")
+
+
+def test_origins_are_checked_unless_kinlib_built_them():
+    """URDF origins are built from checked numbers and taken as they are; an origin given
+    by hand is still checked, and what a joint stores is a plain read-only array, so a
+    product with it is never taken unchecked."""
+    bad = np.diag([2.0, 1.0, 1.0, 1.0])
+    with pytest.raises(KinlibError, match="joint 'j' origin"):
+        Joint("j", "continuous", "a", "b", origin=bad)
+    with pytest.raises(KinlibError, match="joint 'j' post"):
+        Joint("j", "continuous", "a", "b", post=bad)
+    robot = load_urdf("""<robot name="r"><link name="a"/><link name="b"/>
+        <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
+        <origin xyz="1 2 3" rpy="0.1 0.2 0.3"/></joint></robot>""")
+    origin = robot.joint("j").origin
+    assert type(origin) is np.ndarray and not origin.flags.writeable
+    assert type(origin @ bad) is np.ndarray
+    with pytest.raises(KinlibError, match="joint 'j' origin"):
+        Joint("j", "continuous", "a", "b", origin=origin @ bad)
+    expected = np.eye(4)
+    expected[:3, :3] = Rotation.from_euler("xyz", [0.1, 0.2, 0.3]).as_matrix()  # extrinsic
+    expected[:3, 3] = [1, 2, 3]
+    assert np.allclose(origin, expected, atol=1e-15)
