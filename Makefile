@@ -1,15 +1,18 @@
 # kinlib: two commands on a fresh machine.
 #   make lab   creates .venv if missing, installs kinlib with its notebook dependencies,
-#              starts JupyterLab on notebooks/ (it prints the URL to open)
+#              starts JupyterLab on notebooks/, the student edition (it prints the URL)
 #   make test  same environment, runs the whole test suite (lint + pytest)
 #   make site  same environment, executes every notebook into a static site in site/
 #              (offline: open site/index.html; MathJax is fetched once with npm into build/)
+#   make lab-instructor   JupyterLab on instructor/, the notebooks with the solutions
+#   make release          regenerate the student editions (notebooks/, assignments/release/)
+#                         from instructor/ and assignments/source/
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinlib-installed
 
-.PHONY: lab test venv bench lint clean site screenshots
+.PHONY: lab lab-instructor release test venv bench lint clean site screenshots
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -24,6 +27,12 @@ ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--allow-root)
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab --notebook-dir=notebooks $(ROOT_FLAG)
+
+lab-instructor: $(STAMP)
+	$(BIN)/jupyter lab --notebook-dir=instructor $(ROOT_FLAG)
+
+release: $(STAMP)
+	$(BIN)/python -m kinlib.assign
 
 lint: $(STAMP)
 	$(BIN)/ruff check .

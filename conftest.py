@@ -10,6 +10,12 @@ not fixtures: nbval kills kernels hard and fixture teardown is skipped on some e
 leaks servers. If ``KINLIB_MESHCAT_ZMQ_URL`` is already set, that server is used and none
 is started. See DEVELOPERS.md.
 
+The instructor edition of the notebooks (``instructor/``) runs under nbval, and every
+exercise's check must say "right" there: ``pytest_runtest_call`` reads the check outputs
+(``application/vnd.kinlib.check+json``) of each cell nbval ran and fails the cell if one is
+not right; the notebook's last cell also fails unless every exercise of the notebook was
+checked, once each, in order.
+
 The course site the browser tests read (``tests/test_site.py``) is built in the background
 from ``pytest_collection_finish`` when a collected test asks for it: ``python -m kinlib.site``
 runs on the second core while the other tests run (one notebook at a time), and the
@@ -30,6 +36,8 @@ import pytest
 
 from kinlib._viewer_server import ViewerServer, _die_with, start_server
 
+ROOT = Path(__file__).resolve().parent
+INSTRUCTOR = ROOT / "instructor"
 ZMQ_ENV = "KINLIB_MESHCAT_ZMQ_URL"
 WEB_ENV = "KINLIB_MESHCAT_WEB_URL"
 PID_ENV = "KINLIB_MESHCAT_SERVER_PID"
@@ -107,6 +115,39 @@ def site():
     assert build["proc"].returncode == 0, f"the site build failed:\n{log[-4000:]}"
     print(f"site build: {log.strip().splitlines()[-1]} (waited {time.monotonic() - waited:.1f} s)")
     return Path(build["folder"]) / "site"
+
+
+def _code_cells(path: Path) -> int:
+    import nbformat
+
+    cached = _state.setdefault("code_cells", {})
+    if path not in cached:
+        nb = nbformat.read(path, as_version=4)
+        cached[path] = sum(c.cell_type == "code" for c in nb.cells)
+    return cached[path]
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_call(item):
+    result = yield
+    if type(item).__name__ == "IPyNbCell" and Path(item.fspath).parent == INSTRUCTOR:
+        _judge_instructor_cell(item)
+    return result
+
+
+def _judge_instructor_cell(item) -> None:
+    from kinlib.check import exercises, results
+
+    path = Path(item.fspath)
+    checks = results(list(item.test_outputs or ()))
+    seen = _state.setdefault("checked", {}).setdefault(path.stem, [])
+    seen.extend(c["exercise"] for c in checks)
+    wrong = [c for c in checks if c["status"] != "right"]
+    assert not wrong, f"the solution of exercise {wrong[0]['exercise']} is not right: " \
+                      f"{wrong[0]['status']}: {wrong[0]['message']}"
+    if item.cell_num == _code_cells(path) - 1:
+        expected = [e.id for e in exercises(path.stem[:2])]
+        assert seen == expected, f"{path.name}: exercises checked {seen}, expected {expected}"
 
 
 def pytest_unconfigure(config):

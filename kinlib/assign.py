@@ -1,10 +1,23 @@
-"""Make the student versions of the assignment notebooks: ``python -m kinlib.assign``.
+"""Make the student editions: ``python -m kinlib.assign`` (``make release``).
 
-Each ``assignments/source/NN_name.ipynb`` holds the instructor's solution between
-``### BEGIN SOLUTION`` and ``### END SOLUTION`` lines (the nbgrader convention). The student
-version ``assignments/release/NN_name.ipynb`` is the same notebook with every such block
-replaced by ``raise NotImplementedError`` (indented like the ``BEGIN`` line), and no outputs
-or execution counts. ``--check`` writes nothing and exits 1 if a release is missing or stale.
+Two pairs of folders, each a source holding the instructor's solutions between
+``### BEGIN SOLUTION`` and ``### END SOLUTION`` lines (the nbgrader convention) and the
+student edition generated from it:
+
+- ``assignments/source/`` → ``assignments/release/`` (graded assignments);
+- ``instructor/`` → ``notebooks/`` (the course's notebooks and their exercises).
+
+In the student edition each solution block is gone:
+
+- inside a function (an indented block) it becomes ``raise NotImplementedError``, so the
+  function exists and a check says "not answered yet" when it calls it;
+- at the top level of a cell the block is removed, and the placeholder written before it
+  stays: ``R_try = ...  # your answer``. A name the block assigns that the notebook uses
+  anywhere else (the check cell) must have such a placeholder in its cell, else this tool
+  refuses: so the student edition runs top to bottom with every exercise blank.
+
+Outputs and execution counts are dropped. ``--check`` writes nothing and exits 1 if an
+edition is missing or stale.
 
 >>> print(release_source('''def f(x):
 ...     \"\"\"Twice x.\"\"\"
@@ -14,65 +27,131 @@ or execution counts. ``--check`` writes nothing and exits 1 if a release is miss
 def f(x):
     \"\"\"Twice x.\"\"\"
     raise NotImplementedError
+>>> print(release_source('''R = ...  # your answer
+... ### BEGIN SOLUTION
+... R = rotx(0.5)
+... ### END SOLUTION'''))
+R = ...  # your answer
 """
 
 from __future__ import annotations
 
 import argparse
+import ast
 import re
 import sys
 from pathlib import Path
 
 from .errors import KinlibError
 
-__all__ = ["release_source", "release_notebook", "main", "BEGIN", "END"]
+__all__ = ["release_source", "release_notebook", "assigned_names", "used_names", "main",
+           "BEGIN", "END", "EDITIONS"]
 
 BEGIN = "### BEGIN SOLUTION"
 END = "### END SOLUTION"
-_ROOT = Path(__file__).resolve().parents[1] / "assignments"
+_ROOT = Path(__file__).resolve().parents[1]
+#: (source folder, student edition folder), relative to the repository
+EDITIONS = (("assignments/source", "assignments/release"), ("instructor", "notebooks"))
+
+
+def _tree(code: str, where: str) -> ast.Module:
+    try:
+        return ast.parse(re.sub(r"^(\s*)[%!].*$", r"\1pass", code, flags=re.M))
+    except SyntaxError as exc:
+        raise KinlibError(f"{where}: not valid Python ({exc.msg}, line {exc.lineno})") from None
+
+
+def assigned_names(code: str, where: str = "cell") -> set[str]:
+    """The names ``code`` binds at its top level (assignments, functions, classes)."""
+    names = set()
+    for node in _tree(code, where).body:
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            names.add(node.name)
+        targets = {ast.Assign: lambda n: n.targets, ast.AugAssign: lambda n: [n.target],
+                   ast.AnnAssign: lambda n: [n.target]}.get(type(node))
+        for t in targets(node) if targets else ():
+            names.update(x.id for x in ast.walk(t) if isinstance(x, ast.Name))
+    return names
+
+
+def used_names(code: str, where: str = "cell") -> set[str]:
+    """The names ``code`` reads."""
+    return {x.id for x in ast.walk(_tree(code, where))
+            if isinstance(x, ast.Name) and isinstance(x.ctx, ast.Load)}
 
 
 def release_source(source: str, where: str = "cell") -> str:
-    """``source`` with each solution block replaced by ``raise NotImplementedError``."""
-    out, inside = [], False
+    """``source`` with each solution block replaced (see the module's docstring)."""
+    return _release(source, where)[0]
+
+
+def _release(source: str, where: str) -> tuple[str, list[str]]:
+    """The released source and the top-level solution blocks it dropped."""
+    out, inside, top, block = [], False, False, []
+    removed = []
     for n, line in enumerate(source.split("\n"), 1):
         stripped = line.strip()
         if stripped == BEGIN:
             if inside:
                 raise KinlibError(f"{where}, line {n}: {BEGIN} inside another solution block")
-            inside = True
-            out.append(line[:len(line) - len(line.lstrip())] + "raise NotImplementedError")
+            inside, block = True, []
+            indent = line[:len(line) - len(line.lstrip())]
+            top = indent == ""
+            if not top:
+                out.append(indent + "raise NotImplementedError")
         elif stripped == END:
             if not inside:
                 raise KinlibError(f"{where}, line {n}: {END} without a {BEGIN}")
             inside = False
-        elif not inside:
+            if top:
+                removed.append("\n".join(block))
+        elif inside:
+            block.append(line)
+        else:
             out.append(line)
     if inside:
         raise KinlibError(f"{where}: {BEGIN} without an {END}")
-    return "\n".join(out)
+    while out and not out[-1].strip() and removed:
+        out.pop()
+    return "\n".join(out), removed
 
 
 def release_notebook(nb):
-    """The student version of a source notebook (a new nbformat node)."""
+    """The student edition of a source notebook (a new nbformat node)."""
     import copy
 
     student = copy.deepcopy(nb)
+    dropped = {}  # cell -> names its top-level solution blocks assigned
     for i, cell in enumerate(student.cells):
         if cell.cell_type == "code":
-            cell.source = release_source(cell.source, f"cell {i}")
+            cell.source, removed = _release(cell.source, f"cell {i}")
+            if removed:
+                dropped[i] = set().union(*(assigned_names(b, f"cell {i}") for b in removed))
             cell.outputs = []
             cell.execution_count = None
         elif re.search(r"^\s*" + re.escape(BEGIN), cell.source, re.M):
             raise KinlibError(f"cell {i}: solution markers belong in code cells")
+    code = {i: c.source for i, c in enumerate(student.cells) if c.cell_type == "code"}
+    for i, names in dropped.items():
+        used = set().union(*(used_names(src, f"cell {j}") for j, src in code.items()))
+        missing = (names & used) - assigned_names(code[i], f"cell {i}")
+        if missing:
+            raise KinlibError(f"cell {i}: the solution assigns {', '.join(sorted(missing))}, "
+                              f"which the notebook uses but the student edition would not "
+                              f"define: write a placeholder such as "
+                              f"`{sorted(missing)[0]} = ...` before {BEGIN}")
     return student
 
 
 def _pairs(root: Path):
-    sources = sorted((root / "source").glob("*.ipynb"))
-    if not sources:
-        raise KinlibError(f"no source notebooks in {root / 'source'}")
-    return [(s, root / "release" / s.name) for s in sources]
+    pairs = []
+    for src, dst in EDITIONS:
+        for s in sorted((root / src).glob("*.ipynb")):
+            pairs.append((s, root / dst / s.name))
+    if not pairs:
+        raise KinlibError(f"no source notebooks in {root} "
+                          f"({', '.join(src + '/' for src, _ in EDITIONS)})")
+    return pairs
 
 
 def main(argv=None) -> int:
@@ -80,13 +159,16 @@ def main(argv=None) -> int:
 
     p = argparse.ArgumentParser(prog="python -m kinlib.assign", description=__doc__.split(
         "\n\n")[0])
-    p.add_argument("--root", type=Path, default=_ROOT, help="the assignments folder")
+    p.add_argument("--root", type=Path, default=_ROOT, help="the repository")
     p.add_argument("--check", action="store_true",
-                   help="write nothing; exit 1 if a release is missing or out of date")
+                   help="write nothing; exit 1 if a student edition is missing or out of date")
     args = p.parse_args(argv)
     stale = []
     for src, dst in _pairs(args.root):
-        text = nbformat.writes(release_notebook(nbformat.read(src, as_version=4))) + "\n"
+        try:
+            text = nbformat.writes(release_notebook(nbformat.read(src, as_version=4))) + "\n"
+        except KinlibError as exc:
+            raise KinlibError(f"{src}: {exc}") from None
         if dst.exists() and dst.read_text(encoding="utf-8") == text:
             continue
         stale.append(dst)

@@ -59,9 +59,9 @@ def test_releases_are_generated_and_current(tmp_path):
             else:
                 assert a.source == b.source
     # a stale release is caught, and regenerating fixes it
-    root = tmp_path / "assignments"
-    (root / "source").mkdir(parents=True)
-    (root / "source" / "x.ipynb").write_text(SOURCES[0].read_text())
+    root = tmp_path  # a repository with one assignment
+    (root / "assignments" / "source").mkdir(parents=True)
+    (root / "assignments" / "source" / "x.ipynb").write_text(SOURCES[0].read_text())
     assert assign_main(["--root", str(root), "--check"]) == 1
     assert assign_main(["--root", str(root)]) == 0
     assert assign_main(["--root", str(root), "--check"]) == 0
@@ -333,3 +333,12 @@ def test_quaternion_from_matrix_mistakes(tmp_path):
     keys = {d["key"] for d in naive_r["diagnoses"]}
     assert keys <= {"nan", "raised", "wrong"} and keys & {"nan", "raised"}, naive_r
     assert top(conj_r) == "conjugate"
+
+
+def test_the_documented_result_of_assignment_01_has_its_real_maximum():
+    import kinlib.grade
+    from kinlib.grade import load_assignment
+
+    points = {c.function: c.points for c in load_assignment("01_rotations").checks}
+    assert sum(points.values()) == 38  # 3 × 2 (rotx, roty, rotz) + 7 functions of 4 or 6
+    assert '"max_score": 38.0' in kinlib.grade.__doc__

@@ -1,4 +1,5 @@
-"""The student's view: every notebook run in JupyterLab in a real (headless) browser.
+"""The student's view: every notebook of the student edition (``notebooks/``, every
+exercise blank) run in JupyterLab in a real (headless) browser.
 
 One JupyterLab server for the module (``lab_harness.Lab``: free port, temporary config,
 a copy of the notebooks). For each notebook a fresh page opens it in its own workspace,
@@ -7,7 +8,9 @@ an execution count. Then:
 
 - no error output: neither in the page (a traceback) nor in the notebook as JupyterLab
   saves it;
-- the notebooks that show meshcat viewers (08, 09, 10) show them, and each viewer draws a
+- every exercise's check ran, in order, and says "not answered yet" (the blank student
+  edition runs top to bottom: nothing depends on an answer);
+- the notebooks that show meshcat viewers (08, 09, 11) show them, and each viewer draws a
   robot: at least ``AXIS_SEEN`` pixels of kinlib's orange joint axes; the control removes
   the robot from that same viewer and the count must fall to ``EMPTY`` or below;
 - sliders are rendered where the notebook makes them (04: the Euler-rate determinant;
@@ -42,9 +45,12 @@ from browser_helpers import (
 )
 from lab_harness import Lab, marked_processes
 
+from kinlib.check import exercises, results
+
 NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
 NAMES = sorted(p.stem for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb"))
-VIEWERS = {"08_urdf_and_matrix_stack", "09_denavit_hartenberg", "10_inverse_kinematics"}
+VIEWERS = {"08_urdf_and_matrix_stack", "09_denavit_hartenberg",
+           "11_numerical_inverse_kinematics"}
 #: notebook → how many sliders it renders
 SLIDERS = {"04_gimbal_lock": 1, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}
 #: the README's pictures: notebook → file name
@@ -252,6 +258,10 @@ def test_notebook_runs_in_jupyterlab(lab, browser, name, tmp_path):
         saved = saved_notebook(lab, page, name)
         errors = error_outputs(saved)
         assert not errors, f"{name}: error outputs in the saved notebook: {errors}"
+        checked = results(saved)
+        assert [c["exercise"] for c in checked] == [e.id for e in exercises(name[:2])], checked
+        answered = [c for c in checked if c["status"] != "unanswered"]
+        assert not answered, f"{name}: a blank exercise is judged: {answered[0]}"
 
         frames = viewer_frames(page)
         expected = "some" if name in VIEWERS else "none"

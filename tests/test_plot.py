@@ -40,3 +40,59 @@ def test_point_and_bad_input():
     with pytest.raises(kl.KinlibError, match="one point"):
         plot_point(ax, np.zeros((2, 3)))
     plt.close("all")
+
+
+def test_arm_points_against_the_link_lengths_and_fk():
+    """The polyline of the 2R arm: the elbow is l1 from the base, the tip l2 from the elbow
+    and at the forward kinematics, for a batch (and the law of cosines for |tip|)."""
+    from kinlib.plot import arm_points
+
+    rng = np.random.default_rng(1)
+    q = rng.uniform(-np.pi, np.pi, (50, 2))
+    pts = arm_points(q, 0.7, 0.4)
+    assert pts.shape == (50, 3, 2) and np.all(pts[:, 0] == 0)
+    np.testing.assert_allclose(np.linalg.norm(pts[:, 1], axis=1), 0.7, rtol=1e-12)
+    np.testing.assert_allclose(np.linalg.norm(pts[:, 2] - pts[:, 1], axis=1), 0.4, rtol=1e-12)
+    np.testing.assert_allclose(np.linalg.norm(pts[:, 2], axis=1) ** 2,
+                               0.49 + 0.16 + 2 * 0.28 * np.cos(q[:, 1]), rtol=1e-12)
+    np.testing.assert_allclose(pts[:, 2], kl.planar_2r_fk(q[:, 0], q[:, 1], 0.7, 0.4)[:, :2, 3])
+    with pytest.raises(kl.KinlibError, match="q"):
+        arm_points([0.1, 0.2, 0.3], 1, 1)
+
+
+def test_plot_arm_draws_one_configuration():
+    from kinlib.plot import arm_points, plot_arm
+
+    fig, ax = plt.subplots()
+    line = plot_arm(ax, [0.3, 1.1], 1.0, 0.8, color="k")
+    np.testing.assert_allclose(np.c_[line.get_xdata(), line.get_ydata()],
+                               arm_points([0.3, 1.1], 1.0, 0.8))
+    assert line.get_marker() == "o"
+    with pytest.raises(kl.KinlibError, match="one configuration"):
+        plot_arm(ax, np.zeros((2, 2)), 1.0, 0.8)
+    plt.close(fig)
+
+
+def test_animate_makes_a_player_with_every_frame_and_closes_the_figure():
+    import re
+
+    from kinlib.plot import animate
+
+    fig, ax = plt.subplots()
+    (line,) = ax.plot([], [])
+    drawn = []
+
+    def draw(k):
+        drawn.append(k)
+        line.set_data([0, k], [0, k])
+
+    html = animate(fig, draw, frames=7, interval=80).data
+    assert "<script" in html and set(drawn) == set(range(7))
+    assert len(set(re.findall(r"frames\[(\d+)\]", html))) == 7
+    assert not plt.fignum_exists(fig.number)
+    fig2, _ = plt.subplots()
+    with pytest.raises(kl.KinlibError, match="frames"):
+        animate(fig2, draw, frames=0)
+    with pytest.raises(kl.KinlibError, match="interval"):
+        animate(fig2, draw, frames=3, interval=-1)
+    plt.close("all")

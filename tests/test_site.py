@@ -47,7 +47,7 @@ NOTEBOOKS = ROOT / "notebooks"
 PAGES = [p.name for p in outline(NOTEBOOKS)]
 SCENES = {"08_urdf_and_matrix_stack": {"test_robot", "link1", "link4", "joint3"},
           "09_denavit_hartenberg": {"puma560", "link1", "link6"},
-          "10_inverse_kinematics": {"puma560", "link1", "link6", "line"}}
+          "11_numerical_inverse_kinematics": {"puma560", "link1", "link6", "line"}}
 SLIDERS = {"04_gimbal_lock": 1, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}
 
 MATH_STATE = """() => {
@@ -227,7 +227,7 @@ def check_snapshot(frame_el, name: str, out: Path) -> None:
     assert SCENES[name] <= names, f"{name}: missing {SCENES[name] - names} in the scene"
     assert_removal_empties(frame_el, png, f"/meshcat/notebook{name[:2]}", name,
                            out / "scene_emptied.png")
-    if name == "10_inverse_kinematics":  # the IK trajectory travels inside the snapshot
+    if name == "11_numerical_inverse_kinematics":  # the IK trajectory is in the snapshot
         from test_viz import page_commands
 
         srcdoc = html.unescape(frame_el.get_attribute("srcdoc"))

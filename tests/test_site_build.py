@@ -59,7 +59,7 @@ def test_outline_refuses_a_notebook_without_a_title(tmp_path):
 
 def test_index_page_lists_both_parts_and_renders_goals_as_html():
     page = index_html(outline(NOTEBOOKS))
-    assert page.count('class="kl-lesson"') == 12
+    assert page.count('class="kl-lesson"') == 14
     assert "Part 1" in page and "Part 2" in page and "<ol>" in page
     assert "tex-svg-full.js" in page and "https://" not in page
 

@@ -19,7 +19,7 @@ kinlib, with diagnoses of the classic mistakes (:mod:`kinlib.grade._checks`).
 A result is a JSON-ready dict::
 
     {"submission": path, "assignment": "01_rotations", "graded": true, "error": null,
-     "score": 31.5, "max_score": 34.0,
+     "score": 35.5, "max_score": 38.0,
      "checks": [{"function": "rotx", "points": 2, "score": 2.0, "passed": 30, "total": 30,
                  "diagnoses": [{"key": "transposed", "count": 12, "message": "..."}],
                  "examples": [{"input": "...", "expected": "...", "got": "...",

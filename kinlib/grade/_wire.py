@@ -145,6 +145,10 @@ class Odd:
     def __repr__(self) -> str:
         return f"<{self.type} {self.repr}>"
 
+    def kinlib_describe(self) -> str:
+        """How a check names it (:func:`kinlib.check.as_numeric`)."""
+        return f"a {self.type} ({self.repr[:80]})"
+
 
 def dumps(message: dict) -> bytes:
     """One message as a line of JSON (NaN and inf allowed)."""

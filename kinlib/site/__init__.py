@@ -43,7 +43,7 @@ TEMPLATES = Path(__file__).resolve().parent / "templates"
 MARKER = ".kinlib-site"  # a directory holding it may be emptied by the next build
 #: the two parts of the course: (title, first notebook number, last)
 PARTS = (("Part 1 · Spatial descriptions and orientation", 1, 7),
-         ("Part 2 · Kinematic models, inverse and differential kinematics, planning", 8, 12))
+         ("Part 2 · Kinematic models, inverse and differential kinematics, planning", 8, 14))
 SESSION_ENV = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL", "KINLIB_MESHCAT_SERVER_PID")
 
 MATHJAX_VERSION = "3.2.2"

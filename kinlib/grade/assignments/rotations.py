@@ -6,8 +6,9 @@ from __future__ import annotations
 import numpy as np
 
 import kinlib as kl
+from kinlib.check.judges import axis_angle_judge, euler_angles_judge
 
-from .._checks import RIGHT, Assignment, Check, Mistake, Verdict, as_numeric, close, fmt
+from .._checks import Assignment, Check, Mistake
 from .common import (
     DEGREES,
     TRANSPOSED,
@@ -61,36 +62,6 @@ def _sequence_mistakes():
     return out
 
 
-def _judge_inverse_euler():
-    def judge(args, got):
-        (R_in,) = args
-        a, bad = as_numeric(got, (3,), "three angles (alpha, beta, gamma)")
-        if a is None:
-            if bad.key == "nan" and kl.euler_gimbal_lock(R_in, "ZYX", 1e-6):
-                return Verdict(False, "gimbal", "NaN at gimbal lock (β = ±90°, cos β = 0): "
-                                                "there only α ± γ is determined; set α = 0 "
-                                                "and get γ from the entries that remain")
-            return bad
-        if close(_zyx(*a), R_in, 1e-6):
-            return RIGHT
-        if close(_zyx(*np.deg2rad(a)), R_in, 1e-6):
-            return Verdict(False, "degrees", DEGREES.message)
-        if close(_zyx(*a[::-1]), R_in, 1e-6):
-            return Verdict(False, "order", "your angles come in the wrong order: return "
-                                           "(alpha, beta, gamma) with R = Rz(α) Ry(β) Rx(γ)")
-        if close(kl.rotx(a[0]) @ kl.roty(a[1]) @ kl.rotz(a[2]), R_in, 1e-6):
-            return Verdict(False, "extrinsic", "your angles rebuild R as Rx Ry Rz (fixed "
-                                               "axes); Euler ZYX means R = Rz(α) Ry(β) Rx(γ)")
-        if kl.euler_gimbal_lock(R_in, "ZYX", 1e-6):
-            return Verdict(False, "gimbal", "wrong at gimbal lock (β = ±90°): with α = 0, "
-                                            "Rz(0) Ry(±90°) Rx(γ) must equal R; solve γ from "
-                                            "the entries that do not vanish")
-        err = float(np.abs(_zyx(*a) - R_in).max())
-        return Verdict(False, "wrong", f"Rz(α) Ry(β) Rx(γ) of your angles misses R by up to "
-                                       f"{err:.3g}", kl.euler_from_matrix(R_in, "ZYX"))
-    return judge
-
-
 def _inverse_euler_cases(rng):
     cases = [(_zyx(*e),) for e in _euler_cases(rng)[:40]]
     for sign in (1.0, -1.0):  # gimbal lock, β = ±90° with exact zeros, several α, γ
@@ -107,40 +78,6 @@ def _aa_cases(rng):
              ([0.6, 0.8, 0.0], -1.0)]
     return [(np.array(k), a) for k, a in fixed] + \
         [(k, float(t)) for k, t in zip(axes, rng.uniform(-np.pi, np.pi, 34), strict=True)]
-
-
-def _judge_inverse_aa(args, got):
-    (R_in,) = args
-    if not isinstance(got, tuple | list) or len(got) != 2:
-        return Verdict(False, "type", f"returned {fmt(got, 80)}; expected a pair "
-                                      "(axis, angle): axis a unit 3-vector, angle in [0, π]")
-    k, bad = as_numeric(got[0], (3,), "a unit axis")
-    if k is None:
-        return bad
-    t, bad = as_numeric(got[1], ())
-    if t is None:
-        return bad
-    t = float(t)
-    if abs(np.linalg.norm(k) - 1.0) > 1e-6:
-        return Verdict(False, "unit", f"the axis has length {np.linalg.norm(k):.4g}; it must "
-                                      "be a unit vector (at θ = 0 any unit axis will do)")
-    if t > np.pi + 1e-6 and close(kl.matrix_from_axis_angle(k, np.deg2rad(t)), R_in, 1e-6):
-        return Verdict(False, "degrees", DEGREES.message)
-    if not -1e-9 <= t <= np.pi + 1e-9:
-        return Verdict(False, "range", f"angle {t:.4g} is outside [0, π]: arccos((tr R − 1)/2) "
-                                       "gives the angle in [0, π]")
-    rebuilt = kl.matrix_from_axis_angle(k, t)
-    if close(rebuilt, R_in, 1e-6):
-        return RIGHT
-    if close(rebuilt.T, R_in, 1e-6):
-        return Verdict(False, "axis sign", "your axis points the wrong way (you get Rᵀ back): "
-                                           "the skew part (R − Rᵀ)/2 is sin θ [k]×, so "
-                                           "k = (R32 − R23, R13 − R31, R21 − R12) / (2 sin θ)")
-    near_pi = abs(np.trace(R_in) + 1.0) < 1e-6
-    hint = (" Near θ = π, sin θ ≈ 0: get k from the symmetric part, R + I = 2 k kᵀ"
-            if near_pi else "")
-    return Verdict(False, "wrong", "Rodrigues' matrix of your (axis, angle) is not R." + hint,
-                   kl.axis_angle_from_matrix(R_in))
 
 
 def _aa_inverse_cases(rng):
@@ -168,7 +105,7 @@ def assignment() -> Assignment:
                      DEGREES.of(lambda a, b, g: _zyx(*np.deg2rad([a, b, g]))),
                      *_sequence_mistakes()]),
               Check("matrix_to_euler_zyx", 6, "ZYX angles of R, also at gimbal lock",
-                    _inverse_euler_cases, judge=_judge_inverse_euler()),
+                    _inverse_euler_cases, judge=euler_angles_judge("ZYX")),
               Check("axis_angle_to_matrix", 4, "Rodrigues' formula", _aa_cases,
                     kl.matrix_from_axis_angle,
                     [TRANSPOSED.of(lambda k, t: kl.matrix_from_axis_angle(k, t).T),
@@ -177,7 +114,7 @@ def assignment() -> Assignment:
                                           "R = cos θ I + sin θ [k]× + (1 − cos θ) k kᵀ",
                              lambda k, t: np.cos(t) * np.eye(3) + np.sin(t) * kl.skew(k))]),
               Check("matrix_to_axis_angle", 6, "axis and angle of R, also at θ = 0 and π",
-                    _aa_inverse_cases, judge=_judge_inverse_aa),
+                    _aa_inverse_cases, judge=axis_angle_judge),
               Check("quat_multiply", 4, "Hamilton product p ⊗ q, [w, x, y, z]", _quat_pairs,
                     mult,
                     [Mistake("order", "this is q ⊗ p: the product does not commute (the "
