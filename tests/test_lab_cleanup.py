@@ -1,8 +1,9 @@
 """The JupyterLab harness leaves nothing behind: not when a test fails, not when pytest
 itself is killed.
 
-Each case runs pytest in a subprocess on a small test file that starts a ``Lab``, runs
-notebook 08 in the browser (so a kernel and the kernel's meshcat server are running),
+Each case runs pytest in a subprocess on a small test file that starts a ``Lab``, runs a
+one-cell notebook that opens a meshcat viewer in the browser (so a kernel and the kernel's
+meshcat server are running),
 records the pids that carry the run's marker, and then fails (``fail``) or waits to be
 SIGKILLed (``kill``). Afterwards no process may carry the marker and the port must be
 closed. The recorded pids are the control: the processes existed while the test ran.
@@ -19,10 +20,16 @@ import sys
 import time
 from pathlib import Path
 
+import nbformat
 import pytest
 from lab_harness import marked_processes
 
 TESTS = Path(__file__).resolve().parent
+VIEWER = """from kinlib.robots import autorob_test_robot
+from kinlib.viz import RobotVisualizer
+
+viz = RobotVisualizer(autorob_test_robot(), prefix="cleanup")
+viz.jupyter_cell(height=200)"""
 INNER = '''
 import json, os, sys, time
 from pathlib import Path
@@ -51,7 +58,7 @@ def cmdline(pid):
 
 
 def test_inner(lab):
-    name = "08_urdf_and_matrix_stack"
+    name = "00_viewer"
     cells = len(json.loads((lab.root / f"{name}.ipynb").read_text())["cells"])
     with launch() as browser:
         page = browser.new_page()
@@ -76,9 +83,14 @@ def _port_open(port: int) -> bool:
 def test_lab_leaves_nothing_running(mode, tmp_path, browser):
     del browser  # only to skip (or fail under CI) exactly when the browser suite does
     (tmp_path / "test_inner.py").write_text(INNER)
+    notebooks = tmp_path / "notebooks"
+    notebooks.mkdir()
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(VIEWER)])
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    nbformat.write(nb, notebooks / "00_viewer.ipynb")
     record = tmp_path / "record.json"
-    env = dict(os.environ, RECORD=str(record), MODE=mode,
-               NOTEBOOKS=str(TESTS.parent / "notebooks"),
+    env = dict(os.environ, RECORD=str(record), MODE=mode, NOTEBOOKS=str(notebooks),
                PYTHONPATH=os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")]))
     env.pop("PYTEST_ADDOPTS", None)  # the outer run's options are not the inner one's
     inner = subprocess.Popen([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",

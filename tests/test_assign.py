@@ -1,0 +1,54 @@
+"""The release tool makes the student editions: solution blocks inside functions become
+``raise NotImplementedError``; blocks at the top level of a cell go, their placeholder
+stays, and a notebook whose student edition would not define a name it reads is refused."""
+
+import nbformat
+import pytest
+
+from kinlib import KinlibError
+from kinlib.assign import release_notebook, release_source
+
+TOP = "R_try = ...  # your answer\n### BEGIN SOLUTION\nc = 0.5\nR_try = c * 2\n### END SOLUTION\n"
+
+
+def notebook(*sources):
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_code_cell(s) for s in sources]
+    return nb
+
+
+def test_a_top_level_solution_goes_and_its_placeholder_stays():
+    assert release_source(TOP) == "R_try = ...  # your answer"
+    student = release_notebook(notebook(TOP, 'check("01.1", R_try)'))
+    assert student.cells[0].source == "R_try = ...  # your answer"
+    assert student.cells[1].source == 'check("01.1", R_try)'
+    exec(student.cells[0].source, {})  # the blank edition runs
+
+
+def test_a_solution_inside_a_function_raises_not_implemented():
+    src = "def f(x):\n    '''Twice x.'''\n    ### BEGIN SOLUTION\n    return 2 * x\n    ### END SOLUTION\n"
+    scope = {}
+    exec(release_source(src), scope)
+    with pytest.raises(NotImplementedError):
+        scope["f"](1)
+
+
+def test_a_name_the_notebook_reads_needs_a_placeholder():
+    no_placeholder = "### BEGIN SOLUTION\nR_try = 1\n### END SOLUTION\n"
+    with pytest.raises(KinlibError, match=r"cell 0: the solution assigns R_try.*R_try = \.\.\."):
+        release_notebook(notebook(no_placeholder, "print(R_try)"))
+    # a helper name of the solution that nothing else reads needs none (c above)
+    release_notebook(notebook(TOP, "print(R_try)"))
+    with pytest.raises(KinlibError, match="assigns c"):
+        release_notebook(notebook(TOP, "print(c)"))
+
+
+def test_outputs_go_and_markers_in_markdown_are_refused():
+    nb = notebook(TOP)
+    nb.cells[0].outputs = [nbformat.v4.new_output("stream", text="x")]
+    nb.cells[0].execution_count = 3
+    student = release_notebook(nb)
+    assert student.cells[0].outputs == [] and student.cells[0].execution_count is None
+    nb.cells.append(nbformat.v4.new_markdown_cell("### BEGIN SOLUTION\nno\n### END SOLUTION"))
+    with pytest.raises(KinlibError, match="markers belong in code cells"):
+        release_notebook(nb)
