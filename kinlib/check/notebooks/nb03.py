@@ -1,0 +1,253 @@
+"""Notebook 03 · Euler angles and fixed angles: building ᴬR_B for moving and fixed axes,
+the Z-Y-X inverse problem, its singularity and the two gimbal-lock branches."""
+
+import numpy as np
+
+from .._symbolic import expression_judge
+from .._verdict import Verdict, as_numeric, close
+from ..judges import euler_angles_judge
+from ._make import choice, judged
+
+
+def _abg():
+    import sympy as sp
+
+    return sp.symbols("alpha beta gamma", real=True)
+
+
+def _rot(axis: str, angle):
+    from ... import rotx, roty, rotz
+
+    return {"x": rotx, "y": roty, "z": rotz}[axis](angle)
+
+
+def _product(*turns):
+    """The product of elementary rotations, e.g. ``_product(("z", a), ("y", b))``."""
+    out = _rot(*turns[0])
+    for t in turns[1:]:
+        out = out * _rot(*t)
+    return out
+
+
+def _zyx():
+    """ᴬR_B of the Z-Y-X Euler angles (α, β, γ), from kinlib's sequence convention."""
+    from ... import matrix_from_euler
+
+    return matrix_from_euler(list(_abg()), "ZYX")
+
+
+def _xyz_fixed():
+    """ᴬR_B of the X-Y-Z fixed angles (γ, β, α), from kinlib's sequence convention."""
+    from ... import matrix_from_euler
+
+    a, b, g = _abg()
+    return matrix_from_euler([g, b, a], "xyz")
+
+
+def _reversed():
+    a, b, g = _abg()
+    return _product(("x", g), ("y", b), ("z", a))
+
+
+def _letters_as_xyz():
+    a, b, g = _abg()
+    return _product(("x", a), ("y", b), ("z", g))
+
+
+def _roty_sign():
+    a, b, g = _abg()
+    return _rot("z", a) * _rot("y", b).T * _rot("x", g)
+
+
+def _similarity_backwards():
+    """Seed 002's fixed-angle derivation with N = R M Rᵀ instead of Rᵀ M R."""
+    a, b, g = _abg()
+    first = _rot("x", g)
+    second = first * (first * _rot("y", b) * first.T)
+    return second * (second * _rot("z", a) * second.T)
+
+
+def _as_named(got, like):
+    """``got`` as a sympy Matrix of ``like``'s shape, its symbols those of ``like`` (matched
+    by name), or None if it is not one."""
+    import sympy as sp
+
+    try:
+        M = got if isinstance(got, sp.MatrixBase) else sp.Matrix(got)
+    except Exception:  # not something a Matrix is made of
+        return None
+    by_name = {x.name: x for x in like.free_symbols}
+    if M.shape != like.shape or any(getattr(x, "name", None) not in by_name
+                                    for x in M.free_symbols):
+        return None
+    return M.xreplace({x: by_name[x.name] for x in M.free_symbols})
+
+
+def _near(M, E, seed: int = 3) -> bool:
+    """Whether M and E agree at two random points (a quick screen before an exact test)."""
+    import sympy as sp
+
+    rng = np.random.default_rng(seed)
+    symbols = sorted(E.free_symbols | M.free_symbols, key=str)
+    for _ in range(2):
+        at = {x: sp.Float(v) for x, v in zip(symbols, rng.uniform(-2, 2, len(symbols)),
+                                             strict=True)}
+        try:
+            m = np.array(M.xreplace(at).evalf(), dtype=float)
+        except (TypeError, ValueError):
+            return False
+        if not np.allclose(m, np.array(E.xreplace(at).evalf(), dtype=float), atol=1e-9):
+            return False
+    return True
+
+
+def _derive(id, title, expected, named, diagnoses):
+    """A derivation judged exactly (:func:`expression_judge`: right, or right up to a sign,
+    transposed, two angles swapped). An answer that is one of the ``named`` mistakes
+    ``(key, message, model)`` — screened at random points, then confirmed exactly with
+    :func:`~kinlib.symbolic.sym_equal` — gets that diagnosis."""
+    from ...symbolic import sym_equal
+
+    base = expression_judge(expected, what="a 3×3 sympy Matrix")
+
+    def judge(args, got):
+        E = expected()
+        M = _as_named(got, E)
+        if M is not None and not _near(M, E):
+            for key, message, model in named:
+                W = model()
+                if _near(M, W) and sym_equal(M, W):
+                    return Verdict(False, key, message, E)
+        return base(args, got)
+    return judged(id, "derive", title, judge, diagnoses=diagnoses)
+
+
+_EXTRINSIC_03_1 = ("this is Rx(γ) Ry(β) Rz(α): the turns multiplied right to left, as for "
+                   "fixed axes. About the moving axes each new turn is described in the frame "
+                   "before it and multiplies on the right: ᴬR_B = ᴬR_B′ ᴮ′R_B″ ᴮ″R_B = "
+                   "Rz(α) Ry(β) Rx(γ)")
+_EXTRINSIC_03_2 = ("this is Rx(γ) Ry(β) Rz(α): you multiplied the turns left to right, as for "
+                   "moving axes. A turn about a fixed axis multiplies on the left: the "
+                   "similarity transform gives ᴬR_B″ = ᴬR_B′ (ᴬR_B′)ᵀ Ry(β) ᴬR_B′ = Ry(β) Rx(γ)")
+
+
+def _R_try():
+    from ... import matrix_from_euler
+
+    return matrix_from_euler([0.3, -0.5, 1.2], "ZYX")
+
+
+_FIXED_MESSAGES = {
+    "sequence": "your angles come in the wrong order: x-y-z fixed angles are listed in the "
+                "order of the letters, (γ, β, α) — the angle about x first — with "
+                "R = Rz(α) Ry(β) Rx(γ); you gave (α, β, γ), the Z-Y-X order",
+    "extrinsic": "your angles rebuild R as Rx(γ) Ry(β) Rz(α), the X-Y-Z Euler matrix (moving "
+                 "axes, 'XYZ'); the fixed angles 'xyz' mean R = Rz(α) Ry(β) Rx(γ)",
+}
+
+
+def _fixed_angles_judge():
+    """euler_angles_judge("xyz") on R_try, its messages in the notebook's names: the angle
+    about x is γ, about z α."""
+    base = euler_angles_judge("xyz")
+
+    def judge(args, got):
+        v = base((_R_try(),), got)
+        if v.key in _FIXED_MESSAGES:
+            return Verdict(False, v.key, _FIXED_MESSAGES[v.key], v.expected)
+        return v
+    return judge
+
+
+def _singularity_answer() -> str:
+    """Option a when, at β = ±90°, the third turn's axis Rz(α) Ry(β) x̂ is parallel to the
+    first (ẑ) while det R stays 1 (so b, c, d are the misconceptions)."""
+    from ... import matrix_from_euler, roty, rotz
+
+    aligned = all(abs(abs((rotz(0.7) @ roty(beta))[:, 0] @ [0.0, 0.0, 1.0]) - 1.0) < 1e-12
+                  for beta in (np.pi / 2, -np.pi / 2))
+    unit_det = np.isclose(np.linalg.det(matrix_from_euler([0.7, np.pi / 2, 0.2], "ZYX")), 1.0)
+    return "a" if aligned and unit_det else "b"
+
+
+def _lock_case(alpha, beta, gamma):
+    """A Z-Y-X matrix with its structural zeros exact (as a matrix typed in or read from a
+    pose would have them): at gimbal lock cos β is exactly 0."""
+    from ... import matrix_from_euler
+
+    R = matrix_from_euler([alpha, beta, gamma], "ZYX")
+    return np.where(np.abs(R) < 1e-12, 0.0, R)
+
+
+def _zyx_cases():
+    from ... import matrix_from_euler
+
+    rng = np.random.default_rng(33)
+    generic = rng.uniform([-np.pi, -1.4, -np.pi], [np.pi, 1.4, np.pi], (6, 3))
+    generic = np.vstack([generic, [3.0, 0.3, -2.9], [-2.5, -1.2, 2.8]])
+    locks = [(0.7, np.pi / 2, 0.2), (-1.2, np.pi / 2, 2.5), (0.4, -np.pi / 2, 1.1),
+             (2.0, -np.pi / 2, -0.6), (0.0, -np.pi / 2, 0.9)]
+    return ([(matrix_from_euler(x, "ZYX"),) for x in generic]
+            + [(_lock_case(*x),) for x in locks])
+
+
+def _zyx_judge():
+    """Angles that rebuild R are right (euler_angles_judge); at gimbal lock, angles right
+    but for the sign of γ are the +90° formula used at −90° (or the reverse)."""
+    from ...euler import euler_gimbal_lock, matrix_from_euler
+
+    base = euler_angles_judge("ZYX")
+
+    def judge(args, got):
+        v = base(args, got)
+        (R,) = args
+        if v.ok or not euler_gimbal_lock(R, "ZYX"):
+            return v
+        x, _ = as_numeric(got, (3,))
+        if x is not None and close(matrix_from_euler([x[0], x[1], -x[2]], "ZYX"), R, 1e-6):
+            at = "−90°" if R[2, 0] > 0 else "+90°"
+            return Verdict(False, "sign", f"γ has the wrong sign at β = {at}: there (r12, r22) "
+                                          + ("= (−sin γ, cos γ), so γ = −atan2(r12, r22); "
+                                             "atan2(r12, r22) is the +90° formula"
+                                             if at == "−90°" else
+                                             "= (sin γ, cos γ), so γ = +atan2(r12, r22)"),
+                           v.expected)
+        return v
+    return judge
+
+
+EXERCISES = [
+    _derive("03.1", "ᴬR_B for Z-Y-X Euler angles", _zyx,
+            [("extrinsic", _EXTRINSIC_03_1, _reversed),
+             ("sequence", "this is Rx(α) Ry(β) Rz(γ), the X-Y-Z Euler sequence: in Z-Y-X, "
+                          "α turns about z, β about the new y, γ about the newest x",
+              _letters_as_xyz),
+             ("R_Y sign", "the sines of R_Y(β) have swapped signs: R_Y(β) = [[cβ, 0, sβ], "
+                          "[0, 1, 0], [−sβ, 0, cβ]] (turning about y takes z towards x)",
+              _roty_sign)],
+            ("extrinsic", "sequence", "swapped", "transposed", "R_Y sign")),
+    _derive("03.2", "ᴬR_B for X-Y-Z fixed angles", _xyz_fixed,
+            [("extrinsic", _EXTRINSIC_03_2, _reversed),
+             ("similarity", "the similarity transform is the wrong way round: a rotation M "
+                            "about a fixed axis, described in the current frame {B′}, is "
+                            "N = (ᴬR_B′)⁻¹ M ᴬR_B′, the inverse on the left",
+              _similarity_backwards)],
+            ("extrinsic", "similarity", "swapped")),
+    judged("03.3", "compute", "the X-Y-Z fixed angles of R_try", _fixed_angles_judge(),
+           diagnoses=("sequence", "extrinsic", "degrees")),
+    choice("03.4", "predict", "the physical interpretation of the Z-Y-X singularity",
+           {"a": "the first and third rotation axes line up: a degree of freedom is lost",
+            "b": "R becomes singular (det R = 0)",
+            "c": "orientations with β = ±90° cannot be reached",
+            "d": "only a numerical problem of dividing by cos β"}, _singularity_answer(),
+           {"b": ("det", "R is still a rotation, det R = 1 for every β: what is lost is not R "
+                         "but the uniqueness of the angles that build it"),
+            "c": ("unreachable", "they are reached — by infinitely many (α, γ) pairs, not by "
+                                 "none: at β = +90° any pair with the same γ − α gives R"),
+            "d": ("numerical", "no formula can help: at cos β = 0 the entries r11, r21, r32, "
+                               "r33 that carry α and γ all vanish, and R depends on γ − α (or "
+                               "γ + α) only — the information is not in R")}),
+    judged("03.5", "implement", "Z-Y-X Euler angles with both gimbal-lock branches",
+           _zyx_judge(), cases=_zyx_cases(),
+           diagnoses=("sign", "gimbal", "sequence", "degrees")),
+]
