@@ -6,12 +6,14 @@ For a target pose ``(R_t, p_t)`` and the current pose ``(R, p) = fk(q)`` the err
 
 (metres and radians, in the base frame), and each step solves
 
-.. math:: (J^T J + \lambda I)\,\Delta q = J^T e
+.. math:: (J^T J + \mu I)\,\Delta q = J^T e
 
-with the geometric Jacobian J. A step that lowers ``|e|`` is kept and λ shrinks (towards
-Gauss–Newton); one that does not is undone and λ grows (towards a short gradient step).
+with the geometric Jacobian J and the damping μ (texts that write the term as λ² I, as the
+course's notebook 11 and assignment 03 do, have μ = λ²). A step that lowers ``|e|`` is kept
+and μ shrinks (towards Gauss–Newton); one that does not is undone and μ grows (towards a
+short gradient step).
 After each step q is clipped into the joint limits (continuous joints are wrapped into
-(−π, π]). An attempt that has not converged after ``max_iterations`` steps, or whose λ
+(−π, π]). An attempt that has not converged after ``max_iterations`` steps, or whose μ
 has grown useless, restarts from a random configuration within the limits (seeded), up
 to ``restarts`` times. Success means ``|p_t − p| < tol_position`` (metres) and the
 rotation angle between ``R_t`` and ``R`` is below ``tol_rotation`` (radians) — never a
