@@ -84,3 +84,36 @@ def test_unknown_exercises_are_a_clear_error():
         check("01.99", 1)
     with pytest.raises(KinlibError, match=r"expected an exercise id like '03\.2'"):
         check("1.1", 1)
+
+
+def test_a_derivation_is_decided_exactly_whatever_its_form():
+    """Symbols are matched by name (assumptions aside); an unsimplified answer whose extra
+    symbol cancels is right; a foreign symbol that stays is named."""
+    import kinlib as kl
+
+    theta, gamma = sp.Symbol("theta", real=True), sp.Symbol("gamma", real=True)
+    plain = sp.Symbol("theta")  # no real=True: another sympy symbol of the same name
+    assert check("01.2", kl.roty(plain)).status == "right"
+    assert check("01.2", kl.roty(theta) * (sp.sin(gamma) ** 2 + sp.cos(gamma) ** 2)).status \
+        == "right"
+    stays = check("01.2", kl.roty(theta) * sp.cos(gamma))
+    assert stays.key == "symbols" and "gamma" in stays.message
+    half = kl.roty(theta).subs(sp.cos(theta), 1 - 2 * sp.sin(theta / 2) ** 2)  # half angles
+    assert half != kl.roty(theta) and check("01.2", half).status == "right"
+
+
+def test_a_wrong_derivation_is_shown_at_a_point_on_the_unit_sphere():
+    """With unit=[kx, ky, kz] (one unit vector, as sym_equal reads it), the message's point
+    has |k| = 1, where the right answer is defined."""
+    import re
+
+    from kinlib.check import Rule
+    from kinlib.check._symbolic import expression_judge
+
+    k = sp.Matrix(sp.symbols("k_x k_y k_z", real=True))
+    b = sp.Matrix(sp.symbols("b_x b_y b_z", real=True))
+    judge = Rule(judge=expression_judge(lambda: -k.cross(k.cross(b)), unit=list(k)))
+    verdict = judge.verdict((), b)  # b, not b⊥
+    assert verdict.key == "wrong"
+    values = dict(re.findall(r"(k_[xyz]) = (-?[0-9.e-]+)", verdict.message))
+    assert abs(sum(float(v) ** 2 for v in values.values()) - 1) < 1e-2, verdict.message

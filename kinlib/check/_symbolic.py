@@ -46,7 +46,10 @@ def _probe(got, expected, symbols, unit, seed: int = 0):
     rng = np.random.default_rng(seed)
     values = {s: float(v) for s, v in zip(symbols, rng.uniform(0.2, 1.3, len(symbols)),
                                           strict=True)}
-    for group in unit or ():
+    groups = list(unit or ())
+    if groups and all(isinstance(s, sp.Symbol) for s in groups):
+        groups = [groups]  # a flat sequence of symbols is one unit vector (as for sym_equal)
+    for group in groups:
         group = list(group) if isinstance(group, list | tuple) else [group]
         norm = np.sqrt(sum(values.get(s, 0.0) ** 2 for s in group))
         for s in group:
@@ -79,12 +82,15 @@ def expression_judge(expected: Callable, *, unit=None, swaps: Sequence | None = 
         except (TypeError, ValueError, sp.SympifyError):
             return Verdict(False, "type", f"expected {what}, got {fmt(got, 80)}")
         by_name = {s.name: s for s in exp.free_symbols}
+        g = g.xreplace({s: by_name[s.name] for s in getattr(g, "free_symbols", ())
+                        if s.name in by_name and by_name[s.name] != s})
         unknown = sorted(s.name for s in getattr(g, "free_symbols", ()) if s.name not in by_name)
-        if unknown:
+        if unknown:  # right if they cancel (sin²γ + cos²γ in an unsimplified answer)
+            if _equal(g, exp, unit):
+                return RIGHT
             return Verdict(False, "symbols", f"your answer has symbols the right one does not: "
                                              f"{', '.join(unknown)}; build it from the "
                                              f"notebook's symbols ({', '.join(sorted(by_name))})")
-        g = g.xreplace({s: by_name[s.name] for s in g.free_symbols if by_name[s.name] != s})
         if matrix and g.shape != exp.shape:
             if g.shape == exp.shape[::-1]:
                 return Verdict(False, TRANSPOSED.key, f"your matrix is {g.shape[0]}×"
