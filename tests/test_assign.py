@@ -26,7 +26,8 @@ def test_a_top_level_solution_goes_and_its_placeholder_stays():
 
 
 def test_a_solution_inside_a_function_raises_not_implemented():
-    src = "def f(x):\n    '''Twice x.'''\n    ### BEGIN SOLUTION\n    return 2 * x\n    ### END SOLUTION\n"
+    src = ("def f(x):\n    '''Twice x.'''\n"
+           "    ### BEGIN SOLUTION\n    return 2 * x\n    ### END SOLUTION\n")
     scope = {}
     exec(release_source(src), scope)
     with pytest.raises(NotImplementedError):

@@ -32,10 +32,14 @@ def outline() -> str:
     return "\n".join(lines[1:])
 
 
-def readme_outline(text: str) -> str:
-    m = re.search(re.escape(BEGIN) + r"\n(.*?)\n" + re.escape(END), text, re.S)
+def _block(text: str) -> re.Match:
+    m = re.search(re.escape(BEGIN) + r"\n(.*?)" + re.escape(END), text, re.S)
     assert m, f"the README has no outline between {BEGIN} and {END}"
-    return m.group(1)
+    return m
+
+
+def readme_outline(text: str) -> str:
+    return _block(text).group(1).rstrip("\n")
 
 
 def test_readme_outline_lists_every_notebook_and_exercise():
@@ -48,6 +52,6 @@ def test_readme_outline_lists_every_notebook_and_exercise():
 
 if __name__ == "__main__":
     text = README.read_text()
-    new = text.replace(readme_outline(text), outline())
+    new = text.replace(_block(text).group(0), f"{BEGIN}\n{outline()}\n{END}")
     README.write_text(new)
     print("README outline:", "updated" if new != text else "current", file=sys.stderr)

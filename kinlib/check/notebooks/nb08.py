@@ -76,7 +76,7 @@ def _link2():
 
 
 EXERCISES = [
-    function("08.1", "a joint's <origin> from xyz and rpy", _origin_cases(), _origin,
+    function("08.1", "a joint's origin from xyz and rpy", _origin_cases(), _origin,
              EXTRINSIC.of(lambda x, r: _origin(x, r, "XYZ"),
                           "this is Rx(roll) Ry(pitch) Rz(yaw), the product for rotations "
                           "about the moving axes; URDF's roll, pitch and yaw turn about the "
