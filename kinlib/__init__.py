@@ -28,7 +28,7 @@ from .dual_quaternions import (
 )
 from .errors import KinlibError, URDFError
 from .euler import EULER_SEQUENCES, euler_from_matrix, euler_gimbal_lock, matrix_from_euler
-from .ik import IKResult
+from .ik import IKResult, dls_step, pose_error
 from .model import Joint, Link, Mimic, Visual
 from .planar import Planar2RIK, planar_2r_fk, planar_2r_ik, planar_2r_jacobian
 from .quaternions import (
@@ -110,6 +110,8 @@ __all__ = [
     "Circle",
     "DHRow",
     "IKResult",
+    "pose_error",
+    "dls_step",
     "EULER_SEQUENCES",
     "Joint",
     "Link",

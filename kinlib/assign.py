@@ -16,6 +16,10 @@ In the student edition each solution block is gone:
   anywhere else (the check cell) must have such a placeholder in its cell, else this tool
   refuses: so the student edition runs top to bottom with every exercise blank.
 
+A cell tagged ``"solution"`` (in its metadata) is the instructor's only: the discussion of
+an answer, a derivation that is an exercise's solution. It is left out of the student
+edition, and no other cell may read a name it sets.
+
 Outputs and execution counts are dropped. ``--check`` writes nothing and exits 1 if an
 edition is missing or stale.
 
@@ -45,10 +49,11 @@ from pathlib import Path
 from .errors import KinlibError
 
 __all__ = ["release_source", "release_notebook", "assigned_names", "used_names", "main",
-           "BEGIN", "END", "EDITIONS"]
+           "BEGIN", "END", "EDITIONS", "SOLUTION_TAG"]
 
 BEGIN = "### BEGIN SOLUTION"
 END = "### END SOLUTION"
+SOLUTION_TAG = "solution"  # a cell with this tag is in the instructor edition only
 _ROOT = Path(__file__).resolve().parents[1]
 #: (source folder, student edition folder), relative to the repository
 EDITIONS = (("assignments/source", "assignments/release"), ("instructor", "notebooks"))
@@ -121,6 +126,20 @@ def release_notebook(nb):
     import copy
 
     student = copy.deepcopy(nb)
+    hidden = [i for i, c in enumerate(student.cells)
+              if SOLUTION_TAG in c.metadata.get("tags", ())]
+    kept = [c for i, c in enumerate(student.cells) if i not in hidden]
+    read = set().union(set(), *(used_names(c.source, "cell") for c in kept
+                                if c.cell_type == "code"))
+    for i in hidden:
+        cell = student.cells[i]
+        if cell.cell_type == "code":
+            needed = (assigned_names(cell.source, f"cell {i}") & read)
+            if needed:
+                raise KinlibError(f"cell {i} is for the instructor only (tagged "
+                                  f"{SOLUTION_TAG!r}) but the student edition reads "
+                                  f"{', '.join(sorted(needed))}, which it sets")
+    student.cells = kept
     dropped = {}  # cell -> names its top-level solution blocks assigned
     for i, cell in enumerate(student.cells):
         if cell.cell_type == "code":

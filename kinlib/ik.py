@@ -32,7 +32,7 @@ from .axis_angle import log_so3
 from .errors import KinlibError
 from .transforms import check_transform
 
-__all__ = ["IKResult", "solve_ik"]
+__all__ = ["IKResult", "solve_ik", "pose_error", "dls_step"]
 
 _LAMBDA0, _LAMBDA_MIN, _LAMBDA_MAX = 1e-3, 1e-12, 1e8
 
@@ -54,6 +54,48 @@ class IKResult:
     position_error: np.ndarray | float
     rotation_error: np.ndarray | float
     iterations: np.ndarray | int
+
+
+def pose_error(T, T_target) -> np.ndarray:
+    r"""The error from the pose ``T`` to ``T_target``: ``[p_t − p; log(R_t Rᵀ)^∨]`` (6,).
+
+    Metres, then radians: the translation still to go and the rotation vector of the
+    rotation still to go, both in the base frame — the quantity ``robot.ik`` drives to zero,
+    stacked like the geometric Jacobian's rows ``[v; ω]``. Batched over leading dimensions.
+
+    >>> from kinlib import rotz, transform
+    >>> pose_error(transform(p=[1.0, 0.0, 0.0]), transform(rotz(0.5), [1.0, 2.0, 0.0]))
+    array([0. , 2. , 0. , 0. , 0. , 0.5])
+    """
+    T, T_target = check_transform(T, "T"), check_transform(T_target, "T_target")
+    e_p = T_target[..., :3, 3] - T[..., :3, 3]
+    e_r = log_so3(T_target[..., :3, :3] @ np.swapaxes(T[..., :3, :3], -1, -2))
+    return np.concatenate(np.broadcast_arrays(e_p, e_r), axis=-1)
+
+
+def dls_step(J, e, damping) -> np.ndarray:
+    r"""One damped-least-squares step: ``Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e`` with ``λ = damping``.
+
+    The ``Δq`` that minimises ``|J Δq − e|² + λ² |Δq|²``; ``λ = 0`` is the least-squares
+    (pseudo-inverse) step. ``J`` is ``(..., m, n)``, ``e`` ``(..., m)``, ``damping`` a
+    number ≥ 0 (with ``λ = 0`` the rows of ``J`` must be independent).
+
+    >>> dls_step(np.array([[2.0, 0.0], [0.0, 1.0]]), np.array([2.0, 1.0]), 0.0)
+    array([1., 1.])
+    """
+    J = as_array(J, "J")
+    if J.ndim < 2:
+        raise KinlibError(f"J: expected a Jacobian (..., m, n), got shape {J.shape}")
+    m = J.shape[-2]
+    e = as_array(e, "e", (m,))
+    lam = as_tol(damping, "damping")
+    A = J @ np.swapaxes(J, -1, -2) + lam**2 * np.eye(m)
+    try:
+        y = np.linalg.solve(A, e[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        raise KinlibError("dls_step: J Jᵀ + λ² I is singular: the rows of J are dependent; "
+                          "give a damping > 0") from None
+    return np.einsum("...mn,...m->...n", J, y)
 
 
 def _errors(T_target, T, position_only):

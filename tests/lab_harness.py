@@ -116,7 +116,8 @@ class Lab:
                f"--port={self.port}", "--ServerApp.port_retries=0", "--ServerApp.ip=127.0.0.1",
                f"--IdentityProvider.token={self.token}",
                f"--ServerApp.root_dir={self.root}",
-               "--LabApp.news_url=", "--ServerApp.open_browser=False"]
+               "--LabApp.news_url=", "--ServerApp.open_browser=False",
+               "--LabApp.expose_app_in_browser=True"]
         if os.getuid() == 0:
             cmd.append("--allow-root")
         with open(self.log, "wb") as log:

@@ -53,3 +53,18 @@ def test_outputs_go_and_markers_in_markdown_are_refused():
     nb.cells.append(nbformat.v4.new_markdown_cell("### BEGIN SOLUTION\nno\n### END SOLUTION"))
     with pytest.raises(KinlibError, match="markers belong in code cells"):
         release_notebook(nb)
+
+
+def test_a_cell_for_the_instructor_only_is_left_out():
+    discussion = nbformat.v4.new_markdown_cell("It is R_Z(θ): the half angles double.")
+    discussion.metadata["tags"] = ["solution"]
+    worked = nbformat.v4.new_code_cell("c2_by_hand = 1 + 1")
+    worked.metadata["tags"] = ["solution"]
+    nb = notebook(TOP, 'check("01.1", R_try)')
+    nb.cells[1:1] = [discussion, worked]
+    student = release_notebook(nb)
+    assert [c.source for c in student.cells] == ["R_try = ...  # your answer",
+                                                 'check("01.1", R_try)']
+    nb.cells.append(nbformat.v4.new_code_cell("print(c2_by_hand)"))
+    with pytest.raises(KinlibError, match=r"instructor only .* reads c2_by_hand"):
+        release_notebook(nb)

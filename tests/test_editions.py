@@ -19,7 +19,7 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from kinlib.assign import BEGIN, END, assigned_names, used_names
+from kinlib.assign import BEGIN, END, SOLUTION_TAG, assigned_names, used_names
 from kinlib.assign import main as assign_main
 from kinlib.check import KINDS, exercises
 
@@ -61,6 +61,30 @@ def exercise_cells(nb) -> list[tuple[str, str, int, int]]:
             assert k > 0, "a check cell needs an answer cell before it"
             out.append((*found, code[k - 1], i))
     return out
+
+
+def solution_blocks(source: str) -> list[str]:
+    """The code between the solution markers of a cell, dedented."""
+    out, inside, cur, indent = [], False, [], 0
+    for line in source.split("\n"):
+        if line.strip() == BEGIN:
+            inside, cur, indent = True, [], len(line) - len(line.lstrip())
+        elif line.strip() == END:
+            inside = False
+            out.append("\n".join(x[indent:] for x in cur))
+        elif inside:
+            cur.append(line)
+    return out
+
+
+def expressions(code: str, least: int = 1) -> set[str]:
+    """The expressions of ``code`` (as ``ast.dump``) made of at least ``least`` nodes."""
+    try:
+        tree = ast.parse(re.sub(r"^(\s*)[%!].*$", r"\1pass", code, flags=re.M))
+    except SyntaxError:
+        return set()
+    return {ast.dump(node) for node in ast.walk(tree)
+            if isinstance(node, ast.expr) and sum(1 for _ in ast.walk(node)) >= least}
 
 
 def test_both_editions_hold_the_same_notebooks():
@@ -114,7 +138,8 @@ def test_the_course_has_enough_exercises_of_every_kind():
 def test_no_cell_depends_on_a_students_answer(name):
     """The names an exercise's solution sets are read only by that exercise's own cells."""
     nb = read(INSTRUCTOR, name)
-    code = {i: c.source for i, c in enumerate(nb.cells) if c.cell_type == "code"}
+    code = {i: c.source for i, c in enumerate(nb.cells) if c.cell_type == "code"
+            and SOLUTION_TAG not in c.metadata.get("tags", ())}  # instructor-only cells may
     for ex_id, answer, a, c in exercise_cells(nb):
         solution = "\n".join(block for block in re.findall(
             rf"^{re.escape(BEGIN)}\n(.*?)^{re.escape(END)}", code[a], re.M | re.S))
@@ -124,3 +149,25 @@ def test_no_cell_depends_on_a_students_answer(name):
                 continue
             leaked = names & (used_names(src) - assigned_names(src))
             assert not leaked, f"{name}: cell {i} reads {sorted(leaked)}, set by exercise {ex_id}"
+
+
+#: how many AST nodes an expression of a solution needs to count as giving it away
+SOLUTION_SIZE = 8
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_no_solution_code_in_the_student_edition(name):
+    """An exercise's answer is not shown elsewhere in the student edition: no expression of
+    a solution (of some size) appears in a student cell, unless the lesson had it already
+    before the exercise (a given)."""
+    inst, student = read(INSTRUCTOR, name), read(STUDENT, name)
+    shown = set().union(*(expressions(c.source) for c in student.cells if c.cell_type == "code"))
+    for i, cell in enumerate(inst.cells):
+        if cell.cell_type != "code" or BEGIN not in cell.source:
+            continue
+        before = set().union(set(), *(expressions(c.source) for c in inst.cells[:i]
+                                      if c.cell_type == "code" and BEGIN not in c.source))
+        for block in solution_blocks(cell.source):
+            leaked = (expressions(block, SOLUTION_SIZE) & shown) - before
+            assert not leaked, f"{name}: cell {i}'s solution is shown in the student edition: " \
+                               + "; ".join(ast.unparse(eval(x, vars(ast))) for x in leaked)

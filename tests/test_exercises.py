@@ -70,9 +70,11 @@ def test_the_feedback_shows_itself_in_three_forms():
     right = check("01.3", 6)
     bundle = right._repr_mimebundle_()
     assert set(bundle) == {"text/plain", "text/html", MIME}
+    explain = exercise("01.3").explain
     assert bundle[MIME] == {"exercise": "01.3", "kind": "predict", "status": "right",
-                            "key": "", "message": ""}
-    assert "✔" in bundle["text/html"] and str(right) == "Exercise 01.3 (predict): right."
+                            "key": "", "message": explain}
+    assert "✔" in bundle["text/html"]
+    assert str(right) == "Exercise 01.3 (predict): right" + (f": {explain}" if explain else ".")
     blank = check("01.3", ...)._repr_mimebundle_()
     assert blank[MIME]["status"] == "unanswered" and "<code>...</code>" in blank["text/html"]
     wrong = check("01.3", 9)

@@ -5,6 +5,7 @@ time; the compiled loop and the numpy reference agree."""
 import numpy as np
 import pytest
 
+import kinlib as kl
 from kinlib import IKResult, KinlibError, ik
 from kinlib.robots import autorob_test_robot, panda, planar_2r, puma560, three_dof_arm, ur5
 
@@ -124,3 +125,44 @@ def test_bad_input(kwargs, phrase):
     args = {"T_target": robot.fk(np.zeros(6))} | kwargs
     with pytest.raises(KinlibError, match=phrase):
         robot.ik(**args)
+
+
+def test_pose_error_against_scipy_rotation_vectors():
+    """[p_t − p; log(R_t Rᵀ)^∨]: the translation to go and scipy's rotation vector of the
+    rotation to go (base frame), batched."""
+    from scipy.spatial.transform import Rotation
+
+    rng = np.random.default_rng(4)
+    R1, R2 = Rotation.random(50, random_state=1), Rotation.random(50, random_state=2)
+    p1, p2 = rng.normal(size=(2, 50, 3))
+    T, T_t = kl.transform(R1.as_matrix(), p1), kl.transform(R2.as_matrix(), p2)
+    e = kl.pose_error(T, T_t)
+    assert e.shape == (50, 6)
+    np.testing.assert_allclose(e[:, :3], p2 - p1, atol=1e-15)
+    np.testing.assert_allclose(e[:, 3:], (R2 * R1.inv()).as_rotvec(), atol=1e-12)
+    np.testing.assert_allclose(kl.pose_error(T_t, T_t), 0, atol=1e-15)
+    with pytest.raises(kl.KinlibError, match="T_target"):
+        kl.pose_error(np.eye(4), np.eye(3))
+
+
+def test_dls_step_minimises_the_damped_least_squares_problem():
+    """The step solves min |J Δq − e|² + λ² |Δq|²: the same as least squares on the
+    stacked system [J; λ I] Δq = [e; 0]; λ = 0 is the pseudo-inverse step."""
+    rng = np.random.default_rng(5)
+    for m, n in ((6, 6), (6, 7), (3, 2)):
+        J, e = rng.normal(size=(m, n)), rng.normal(size=m)
+        for lam in (0.0, 0.01, 0.5, 2.0):
+            if lam == 0.0 and m > n:
+                continue  # J Jᵀ singular: no undamped step for a tall J
+            stacked = np.vstack([J, lam * np.eye(n)])
+            expected = np.linalg.lstsq(stacked, np.r_[e, np.zeros(n)], rcond=None)[0]
+            np.testing.assert_allclose(kl.dls_step(J, e, lam), expected, atol=1e-10)
+    Js, es = rng.normal(size=(2, 4, 6, 6)), rng.normal(size=(2, 4, 6))
+    np.testing.assert_allclose(kl.dls_step(Js[0], es[0], 0.1)[2],
+                               kl.dls_step(Js[0][2], es[0][2], 0.1))
+    with pytest.raises(kl.KinlibError, match="damping"):
+        kl.dls_step(np.eye(2), np.ones(2), -1.0)
+    with pytest.raises(kl.KinlibError, match="rows of J are dependent"):
+        kl.dls_step(np.ones((2, 2)), np.ones(2), 0.0)
+    with pytest.raises(kl.KinlibError, match="e: expected"):
+        kl.dls_step(np.eye(3), np.ones(2), 0.1)

@@ -203,7 +203,8 @@ def test_page_renders_offline(site, offline_page, name, tmp_path):
 def check_players(page, name: str) -> None:
     source = (NOTEBOOKS / f"{name}.ipynb").read_text()
     players = page.locator("img[id^='_anim_img']")
-    assert players.count() == source.count("to_jshtml("), f"{name}: {players.count()} players"
+    made = len(re.findall(r"(?<![.\w])(animate|animate_rotation_sequences)\(", source))
+    assert players.count() == made, f"{name}: {players.count()} players, {made} made"
     for k in range(players.count()):
         img = players.nth(k)
         anim = img.get_attribute("id").removeprefix("_anim_img")

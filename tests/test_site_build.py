@@ -36,7 +36,7 @@ def _notebook(folder: Path, name: str, cells: list) -> Path:
 
 def test_outline_reads_titles_and_goals_of_the_course():
     pages = outline(NOTEBOOKS)
-    assert [p.number for p in pages] == list(range(1, 13))
+    assert [p.number for p in pages] == list(range(1, 15))
     first = pages[0]
     assert first.title.startswith("Spatial descriptions") and first.href.endswith(".html")
     raw = json.loads((NOTEBOOKS / f"{first.name}.ipynb").read_text())

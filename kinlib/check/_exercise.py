@@ -31,7 +31,9 @@ class Exercise:
     ``rule`` judges an answer; for a function (``cases`` not empty) it judges the return
     value of each case ``answer(*case)``. ``on_error(case, error text)`` may add a hint
     when the student's function raises. ``diagnoses``: the keys of the mistakes this
-    exercise names (each is produced by a real wrong answer in the course's tests)."""
+    exercise names (each is produced by a real wrong answer in the course's tests).
+    ``explain``: what the check adds once the answer is right (the discussion of the
+    answer, which the student edition does not show before)."""
 
     id: str
     kind: str
@@ -41,6 +43,7 @@ class Exercise:
     placeholder: str = "the `...` in the cell above"
     on_error: object = None
     diagnoses: tuple = ()
+    explain: str = ""
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -52,6 +55,12 @@ class Exercise:
         return self.id.split(".")[0]
 
     def judge(self, answer) -> Verdict:
+        verdict = self._judge(answer)
+        if verdict.ok and self.explain and not verdict.message:
+            return Verdict(True, "", self.explain)
+        return verdict
+
+    def _judge(self, answer) -> Verdict:
         if answer is Ellipsis:
             return Verdict(False, UNANSWERED, f"write your answer in place of {self.placeholder}, "
                                               "run that cell, then this one")
