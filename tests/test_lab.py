@@ -2,9 +2,10 @@
 exercise blank) run in JupyterLab in a real (headless) browser.
 
 One JupyterLab server for the module (``lab_harness.Lab``: free port, temporary config,
-a copy of the notebooks). For each notebook a fresh page opens it in its own workspace,
-waits for the kernel, clicks *Run → Run All Cells* and waits until every code cell has
-an execution count. Then:
+a copy of the notebooks) and one browser page on it, in a fresh workspace. Each notebook is
+opened through JupyterLab (no reload, as a student opens the next one), the test waits for
+its kernel, clicks *Run → Run All Cells* and waits until every code cell has an execution
+count; afterwards the notebook is closed and its kernel shut down. Then:
 
 - no error output: neither in the page (a traceback) nor in the notebook as JupyterLab
   saves it;
@@ -85,10 +86,23 @@ def _session(lab: Lab, name: str) -> dict | None:
                  if s.get("path", "").endswith(f"{name}.ipynb")), None)
 
 
+#: in a page where JupyterLab runs: open a notebook (as a double click in the file browser
+#: would), and close every document without asking to save (the file is saved already)
+OPEN = "path => window.jupyterapp.commands.execute('docmanager:open', {path})"
+CLOSE_ALL = """() => { for (const w of Array.from(window.jupyterapp.shell.widgets('main')))
+  w.dispose(); }"""
+
+
 def open_notebook(lab: Lab, page, name: str, cells: int) -> None:
-    """Open ``name`` in a fresh workspace and wait until its kernel is idle."""
-    page.goto(f"{lab.base}/lab/workspaces/test-{name}/tree/{name}.ipynb"
-              f"?reset&token={lab.token}")
+    """Open ``name`` and wait until its kernel is idle: in a page where JupyterLab already
+    runs, through JupyterLab itself (no reload); else by loading JupyterLab on it, in a
+    fresh workspace."""
+    if page.url.startswith(lab.base) and page.evaluate("() => !!window.jupyterapp"):
+        page.evaluate(CLOSE_ALL)
+        page.evaluate(OPEN, f"{name}.ipynb")
+    else:
+        page.goto(f"{lab.base}/lab/workspaces/test-{name}/tree/{name}.ipynb"
+                  f"?reset&token={lab.token}")
     page.wait_for_function(
         f"() => document.querySelectorAll('.jp-NotebookPanel:not(.lm-mod-hidden) "
         f".jp-Cell').length === {cells}", timeout=60_000)
@@ -250,15 +264,27 @@ def check_viewer(frame_el, name: str, k: int, out: Path) -> None:
           f"{gone} robot pixels")
 
 
+@pytest.fixture(scope="module")
+def lab_page(lab, browser):
+    """One page of JupyterLab for the module: each notebook is opened in it through
+    JupyterLab (as a student opens the next one) and closed after; ``page.errors`` collects
+    the page's JavaScript errors."""
+    context = browser.new_context(viewport={"width": 1280, "height": 900})
+    page = context.new_page()
+    page.errors = []
+    page.on("pageerror", lambda e: page.errors.append(str(e)))
+    try:
+        yield page
+    finally:
+        context.close()
+
+
 @pytest.mark.parametrize("name", NAMES)
-def test_notebook_runs_in_jupyterlab(lab, browser, name, tmp_path):
+def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path):
     nb = json.loads((NOTEBOOKS / f"{name}.ipynb").read_text())
     n_code = sum(c["cell_type"] == "code" for c in nb["cells"])
-    context = browser.new_context(viewport={"width": 1280, "height": 900})
-    messages = []
+    page, errors_so_far = lab_page, len(lab_page.errors)
     try:
-        page = context.new_page()
-        page.on("pageerror", lambda e: messages.append(str(e)))
         open_notebook(lab, page, name, len(nb["cells"]))
         start = time.monotonic()
         prompts = run_all(page, name)
@@ -291,10 +317,11 @@ def test_notebook_runs_in_jupyterlab(lab, browser, name, tmp_path):
             take_readme_shot(page, name, tmp_path)
         for k in range(frames.count()):
             check_viewer(frames.nth(k), name, k, tmp_path)
+        messages = page.errors[errors_so_far:]
         assert not messages, f"{name}: JavaScript errors in JupyterLab: {messages[:3]}"
         print(f"{name}: {n_code} cells in {seconds:.1f} s")
     finally:
-        context.close()
+        page.evaluate(CLOSE_ALL)
         session = _session(lab, name)
         if session is not None:  # close the kernel, as a student closing the tab would
             lab.api("DELETE", f"api/sessions/{session['id']}")
@@ -310,6 +337,7 @@ def take_readme_shot(page, name: str, tmp_path: Path) -> None:
     anchor.first.scroll_into_view_if_needed()
     page.wait_for_timeout(1500)
     page.screenshot(path=str(target))
+    page.keyboard.press("Control+b")  # the file browser back, for the next notebook
 
 
 def test_readme_shows_the_screenshots_this_suite_takes():
