@@ -119,15 +119,22 @@ def test_R_dot_R_transposed_is_skew_for_every_zyx_trajectory_and_gives_the_euler
     np.testing.assert_allclose(kl.rotation_derivative(R_num(ts), w_fd), dR(R_num, ts), atol=1e-8)
 
 
-def test_pan_tilt_head_in_the_fixed_and_the_body_frame():
-    """Exercise 12.1's two answers, against the hand derivation: ω = α̇ z + γ̇ Rz(α) x."""
-    R = kl.rotz(angles_t[0]) * kl.rotx(angles_t[2])
-    space = sp.Matrix([gd * sp.cos(al), gd * sp.sin(al), ad])
-    body = sp.Matrix([gd, ad * sp.sin(ga), ad * sp.cos(ga)])           # Rᵀ ω
+def test_tilting_turntable_in_the_fixed_and_the_body_frame():
+    """Exercise 12.1's answers, against the hand derivation ω = γ̇ x + α̇ Rx(γ) z, and the
+    mistakes it names: the body frame, the product in the other order, unturned axes, −ω."""
+    R = kl.rotx(angles_t[2]) * kl.rotz(angles_t[0])
+    space = sp.Matrix([gd, -ad * sp.sin(ga), ad * sp.cos(ga)])
+    body = sp.Matrix([gd * sp.cos(al), -gd * sp.sin(al), ad])          # Rᵀ ω
     assert sym_equal(omega_of(R), space)
     assert sym_equal(simplify_rotation(kl.vee((R.T * R.diff(t)).subs(TO_SYMBOLS))), body)
+    assert sym_equal(simplify_rotation(kl.rotz(al).T * kl.rotx(ga).T * space), body)
     assert check("12.1", space).status == "right"
+    assert check("12.1", list(space)).status == "right"
     assert check("12.1", body).key == "frame" and check("12.1", -space).key == "sign"
+    other_order = omega_of(kl.rotz(angles_t[0]) * kl.rotx(angles_t[2]))
+    assert sym_equal(other_order, sp.Matrix([gd * sp.cos(al), gd * sp.sin(al), ad]))
+    assert check("12.1", other_order).key == "order"
+    assert check("12.1", sp.Matrix([gd, 0, ad])).key == "axis"
 
 
 @pytest.mark.parametrize("seed", range(3))

@@ -50,3 +50,20 @@ def test_09_5_the_modified_table_builds_the_same_arm():
     modified = kl.Robot.from_dh(rows, "modified")
     q = np.random.default_rng(9).uniform(-np.pi, np.pi, (200, 3))
     assert np.allclose(modified.fk(q), three_dof_arm().fk(q))
+
+
+def test_09_3_the_tip_is_the_planar_arm_turned_by_the_base_as_the_explanation_says():
+    import sympy as sp
+
+    t1, t2, t3, d1, a2, a3 = sp.symbols("theta_1 theta_2 theta_3 d_1 a_2 a_3", real=True)
+    r = a2 * sp.cos(t2) + a3 * sp.cos(t2 + t3)                 # reach in the arm's plane
+    by_hand = sp.Matrix([r * sp.cos(t1), r * sp.sin(t1),
+                         d1 + a2 * sp.sin(t2) + a3 * sp.sin(t2 + t3)])
+    assert sp.simplify(sp.expand_trig(nb09._tip() - by_hand)) == sp.zeros(3, 1)
+
+
+def test_09_5_the_table_is_the_one_the_explanation_writes_out():
+    written = np.array([[0.0, 0.0, 0.4], [0.0, np.pi / 2, 0.0], [0.5, 0.0, 0.0],
+                        [0.4, 0.0, 0.0]])
+    assert np.allclose(nb09._modified_table(), written)
+    assert "(0, π/2, 0)" in next(e for e in nb09.EXERCISES if e.id == "09.5").explain

@@ -66,6 +66,19 @@ def test_planar_ik_is_seed_001s_formula_for_both_elbows(l1, l2):
         assert np.abs(arm.fk(q)[:, :2, 3] - np.stack([x, y], -1)).max() < 1e-9   # the robot model
 
 
+def test_acos_for_the_polar_angle_mirrors_targets_below_the_x_axis():
+    x, y = annulus(np.random.default_rng(3), 500, margin=1e-3)
+    for elbow in ("up", "down"):
+        sol = kl.planar_2r_ik(x, y, L1, L2, elbow=elbow)
+        beta = np.arctan2(y, x) - sol.theta1                          # θ1 = φ − β
+        mirrored = tip(np.arccos(x / np.hypot(x, y)) - beta, sol.theta2)
+        assert np.abs(mirrored - np.stack([x, np.abs(y)], -1)).max() < 1e-9
+    # and θ2 = arccos c2 is always the elbow "down" one
+    down = kl.planar_2r_ik(x, y, L1, L2, elbow="down")
+    c2 = (x**2 + y**2 - L1**2 - L2**2) / (2 * L1 * L2)
+    assert np.abs(np.arccos(c2) - down.theta2).max() < 1e-9
+
+
 def test_the_elbows_are_mirror_images_in_the_line_to_the_target():
     s = np.linspace(0, 2 * np.pi, 24, endpoint=False)
     path = np.array([0.8, 0.2]) + 0.5 * np.stack([np.cos(s), np.sin(s)], axis=1)
@@ -186,18 +199,29 @@ def test_damped_least_squares_by_hand_converges_fast(robot):
         e = pose_error(robot.fk(q), T_target)
         errors.append(np.linalg.norm(e))
         J = robot.jacobian(q)
-        q = q + J.T @ np.linalg.solve(J @ J.T + 0.01**2 * np.eye(6), e)
+        step = J.T @ np.linalg.solve(J @ J.T + 0.01**2 * np.eye(6), e)
+        # the notebook iterates with kinlib's functions: the same numbers as the formulas
+        assert np.abs(kl.pose_error(robot.fk(q), T_target) - e).max() < 1e-14
+        assert np.abs(kl.dls_step(J, e, 0.01) - step).max() < 1e-9 * (1 + np.abs(step).max())
+        q = q + step
     assert errors[-1] < 1e-12
     small = [k for k, err in enumerate(errors) if err < 1e-2]
     assert all(errors[k + 1] < errors[k] / 20 for k in small[:-1])   # each step: ×1/100 or so
     assert np.allclose(robot.fk(q), T_target, atol=1e-12)
-    # the push-through identity of the two forms of the step, for a square and a wide J
+    assert not np.allclose(q, Q_TRUE, atol=1e-3)                        # another solution
+    # the push-through identity of the two forms of the step, for a square and a wide J, and
+    # both are the least-squares solution of [J; λI] Δq = [e; 0] (the notebook's comparison)
     rng = np.random.default_rng(4)
-    for J in (robot.jacobian(Q_TRUE), rng.normal(size=(6, 7))):
+    e = pose_error(robot.fk(robot.poses["ready"]), T_target)
+    for J in (robot.jacobian(robot.poses["ready"]), rng.normal(size=(6, 7))):
         m, n = J.shape
         a = J.T @ np.linalg.inv(J @ J.T + 0.1**2 * np.eye(m))
         b = np.linalg.inv(J.T @ J + 0.1**2 * np.eye(n)) @ J.T
         assert np.abs(a - b).max() < 1e-12
+        stacked = np.linalg.lstsq(np.vstack([J, 0.1 * np.eye(n)]),
+                                  np.concatenate([e, np.zeros(n)]), rcond=None)[0]
+        assert np.abs(a @ e - stacked).max() < 1e-12
+        assert np.abs(kl.dls_step(J, e, 0.1) - stacked).max() < 1e-12
 
 
 def test_the_puma_has_eight_solutions_shoulder_elbow_and_wrist_flip(robot):

@@ -173,6 +173,7 @@ def test_joint_cost_on_an_empty_torus_is_the_wrapped_octile_distance(n, a, b):
     assert plan.cost == pytest.approx(want, rel=1e-12)
     if n == 96:
         assert plan.cost == pytest.approx(5 * h1)        # exercise 14.5: 93 → … → 2
+        assert list(plan.cells[:, 0]) == [93, 94, 95, 0, 1, 2]
 
 
 def test_the_end_moves_with_the_elbow_when_link_2_keeps_its_direction():

@@ -96,3 +96,25 @@ def test_animate_makes_a_player_with_every_frame_and_closes_the_figure():
     with pytest.raises(kl.KinlibError, match="interval"):
         animate(fig2, draw, frames=3, interval=-1)
     plt.close("all")
+
+
+def test_animate_renders_each_frame_once():
+    """Each frame is drawn once, into its PNG: FuncAnimation's redraw of the screen canvas
+    after every frame is skipped (it doubled the cost of every player)."""
+    from unittest import mock
+
+    from matplotlib.figure import Figure
+
+    from kinlib.plot import animate
+
+    draws, draw = [], Figure.draw
+
+    def counted(self, renderer):
+        draws.append(self)
+        return draw(self, renderer)
+
+    fig, ax = plt.subplots()
+    (line,) = ax.plot([], [])
+    with mock.patch.object(Figure, "draw", counted):
+        html = animate(fig, lambda k: line.set_data([0, k], [0, k]), frames=5).data
+    assert html.count("data:image/png") == 5 and len(draws) == 5

@@ -78,6 +78,34 @@ def test_the_drawn_distances_and_angles_are_the_rows_parameters(theta, d, a, alp
     assert np.isclose(swept(arc, o1, x1), alpha)
 
 
+def on_line(p, point, direction):
+    return np.allclose(np.cross(p - point, direction), 0.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("T_prev", poses(), ids=["identity", "posed"])
+@pytest.mark.parametrize("theta, d, a, alpha", rows())
+def test_the_two_links_meet_the_joint_axes_where_dh_says(theta, d, a, alpha, T_prev):
+    g = dh_geometry(theta, d, a, alpha, T_prev=T_prev)
+    F0 = np.eye(4) if T_prev is None else T_prev
+    F1 = F0 @ kl.dh_transform(theta=theta, d=d, a=a, alpha=alpha)
+    o0, x0, z0 = F0[:3, 3], F0[:3, 0], F0[:3, 2]
+    o1, z1 = F1[:3, 3], F1[:3, 2]
+    # link i−1 arrives at o_{i−1} along x_{i−1} (its common normal), from the far side
+    start, end = g.link_prev
+    assert np.allclose(end, o0) and on_line(start, o0, x0) and np.dot(end - start, x0) > 0
+    # link i: a segment from joint i's axis to joint i+1's, perpendicular to both
+    start, end = g.link
+    assert on_line(start, o0, z0) and on_line(end, o1, z1)
+    assert abs(np.dot(end - start, z0)) < 1e-12 and abs(np.dot(end - start, z1)) < 1e-12
+    assert np.isclose(np.linalg.norm(end - start), abs(a))     # the distance of the axes
+    # the joints lie on their axes; joint i holds both links' ends, joint i+1 is at o_i
+    for seg, point, axis in ((g.joint, o0, z0), (g.joint_next, o1, z1)):
+        assert all(on_line(p, point, axis) for p in seg)
+    lo, hi = sorted(np.dot(g.joint - o0, z0))
+    assert lo < 0.0 < hi and lo < d < hi                         # o_{i−1} and the foot
+    assert np.allclose(g.joint_next.mean(axis=0), o1)
+
+
 def test_a_row_worked_by_hand():
     # θ = 90°: x1 = y0; d = 0.5 up z0; a = 1 along x1; α = 90°: z1 = z0 turned about y0 = x0
     g = dh_geometry(np.pi / 2, 0.5, 1.0, np.pi / 2, radius=0.2)
@@ -104,6 +132,12 @@ def test_what_is_plotted_is_the_geometry():
             p, q = np.column_stack(art[key].get_data_3d())
             assert np.allclose(np.cross(q - p, F[:3, 2]), 0.0, atol=1e-12)
             assert np.allclose(np.cross(F[:3, 3] - p, F[:3, 2]), 0.0, atol=1e-12)
+        for key, points in (("link_prev", g.link_prev), ("link", g.link)):
+            assert np.allclose(np.column_stack(art[key].get_data_3d()), points), key
+        assert {"link 1", "link 2"} <= {t.get_text().strip() for t in ax.texts}
+        assert art["joint"] is not None and art["joint_next"] is not None
+        _, bare = plot_dh_row(axes_3d(), 0.7, 0.4, 0.6, -0.9, links=False)
+        assert not {"link_prev", "link", "joint", "joint_next"} & set(bare)
     finally:
         plt.close("all")
 
@@ -135,5 +169,7 @@ def test_bad_plot_options_are_a_kinlib_error():
             plot_dh_row(ax, 0.3, 0.1, 0.5, 0.2, index="")
         with pytest.raises(kl.KinlibError, match="frame_length"):
             plot_dh_row(ax, 0.3, 0.1, 0.5, 0.2, frame_length=0.0)
+        with pytest.raises(kl.KinlibError, match="links"):
+            plot_dh_row(ax, 0.3, 0.1, 0.5, 0.2, links="yes")
     finally:
         plt.close("all")

@@ -95,6 +95,17 @@ def test_the_drawing_shows_the_rings_in_the_colours_of_their_axes():
     plt.close("all")
 
 
+def test_the_drawing_has_no_ticks_unless_asked():
+    bare, ticked = axes_3d(), axes_3d()
+    plot_gimbal(bare, [0.2, 0.5, -0.3])
+    plot_gimbal(ticked, [0.2, 0.5, -0.3], ticks=True)
+    for get in ("get_xticks", "get_yticks", "get_zticks"):
+        assert len(getattr(bare, get)()) == 0
+        assert len(getattr(ticked, get)()) > 0
+    assert [bare.get_xlabel(), bare.get_ylabel(), bare.get_zlabel()] == ["x", "y", "z"]
+    plt.close("all")
+
+
 @pytest.mark.parametrize("bad, match", [
     (dict(angles=[0.1, 0.2]), "angles"),
     (dict(angles=np.zeros((2, 3))), "one triple"),

@@ -8,7 +8,7 @@ from scipy.spatial.transform import Rotation
 
 import kinlib as kl
 from kinlib.plot import axes_3d
-from kinlib.plot.rodrigues import plot_rodrigues, rodrigues_parts
+from kinlib.plot.rodrigues import plot_rodrigues, rodrigues_parts, split_along_axis
 
 RNG = np.random.default_rng(11)
 
@@ -46,6 +46,59 @@ def test_the_parts_have_the_geometry_of_the_derivation():
         assert np.isclose(p.perpendicular_rotated @ p.perpendicular, r2 * np.cos(angle))
         np.testing.assert_allclose(np.cross(p.perpendicular, p.perpendicular_rotated),
                                    r2 * np.sin(angle) * k, atol=1e-12)
+
+
+def test_the_split_is_the_average_of_b_and_its_half_turn():
+    """A half turn about k keeps b∥ and sends b⊥ to −b⊥ (scipy's rotation, not kinlib)."""
+    for _ in range(50):
+        b, axis, _ = random_case()
+        half = Rotation.from_rotvec(np.pi * axis / np.linalg.norm(axis)).apply(b)
+        par, perp = split_along_axis(b, axis)
+        np.testing.assert_allclose(par, (b + half) / 2, atol=1e-12)
+        np.testing.assert_allclose(perp, (b - half) / 2, atol=1e-12)
+
+
+def test_the_symbolic_split_is_the_numeric_one_and_the_derivations():
+    import sympy as sp
+
+    from kinlib.symbolic import sym_equal
+
+    k = sp.Matrix(sp.symbols("k_x k_y k_z", real=True))
+    b = sp.Matrix(sp.symbols("b_x b_y b_z", real=True))
+    par, perp = split_along_axis(b, k)
+    assert par.shape == perp.shape == (3, 1)
+    assert sym_equal(par + perp, b)
+    assert sym_equal(perp, -k.cross(k.cross(b)), list(k))       # seed 000's cross products
+    assert sym_equal(par.cross(k), sp.zeros(3, 1)) and sym_equal(k.dot(perp), 0, list(k))
+    for _ in range(5):
+        bn, axis, _ = random_case()
+        kn = axis / np.linalg.norm(axis)
+        values = dict(zip(list(k) + list(b), list(kn) + list(bn), strict=True))
+        for sym, num in zip((par, perp), split_along_axis(bn, kn), strict=True):
+            np.testing.assert_allclose(np.array(sym.subs(values), dtype=float).ravel(), num,
+                                       atol=1e-12)
+    # a sequence of expressions is read as a column
+    x, y, z = sp.symbols("x y z")
+    par, perp = split_along_axis((x, y, z), [1, 0, 0])
+    assert par == sp.Matrix([x, 0, 0]) and perp == sp.Matrix([0, y, z])
+
+
+@pytest.mark.parametrize("args, match", [
+    (([1.0, 0.0], [0, 0, 1]), "b"),
+    (([1.0, 0.0, 0.0], [0, 0, 0]), "non-zero"),
+    (([1.0, 0.0, 0.0], np.ones((2, 3))), "one 3-vector"),
+])
+def test_the_split_rejects_bad_input(args, match):
+    with pytest.raises(kl.KinlibError, match=match):
+        split_along_axis(*args)
+
+
+def test_the_symbolic_split_rejects_a_wrong_shape():
+    import sympy as sp
+
+    x, y = sp.symbols("x y")
+    with pytest.raises(kl.KinlibError, match="3-vectors"):
+        split_along_axis([x, y], [0, 0, 1])
 
 
 def test_the_circle_and_the_arc_are_where_the_tip_travels():

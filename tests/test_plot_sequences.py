@@ -73,3 +73,22 @@ def test_the_player_has_one_picture_per_frame_and_closes_its_figure():
                                          ([0.3, 0.4, 0.5], "xyz")], steps=2, hold=1)
     assert player.data.count("data:image/png") == 3 * 2 + 1 + 1
     assert plt.get_fignums() == before
+
+
+def test_each_frame_is_rendered_once():
+    """The player renders every frame once, into its PNG (not again for the screen)."""
+    from unittest import mock
+
+    from matplotlib.figure import Figure
+
+    draws = []
+    draw = Figure.draw
+
+    def counted(self, renderer):
+        draws.append(self)
+        return draw(self, renderer)
+
+    with mock.patch.object(Figure, "draw", counted):
+        player = animate_rotation_sequences([([0.5, 0.4, 0.3], "ZYX")], steps=2, hold=1)
+    frames = player.data.count("data:image/png")
+    assert frames == 3 * 2 + 1 + 1 and len(draws) == frames

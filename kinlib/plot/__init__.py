@@ -115,9 +115,14 @@ def animate(fig, draw, frames, *, interval: float = 150):
         raise KinlibError(f"frames: expected at least one frame, got {frames!r}")
     if not np.isfinite(interval) or interval <= 0:
         raise KinlibError(f"interval: expected milliseconds > 0, got {interval!r}")
+    # FuncAnimation redraws the canvas after each frame and the player's writer draws it
+    # again to save it: with the first draw skipped every frame is rendered once (half the
+    # time of a player, the same pictures)
+    fig.canvas.draw_idle = lambda *args, **kwargs: None
     try:
         anim = animation.FuncAnimation(fig, draw, frames=frames, interval=interval)
         html = anim.to_jshtml()
     finally:
+        del fig.canvas.draw_idle
         plt.close(fig)
     return HTML(html)

@@ -13,8 +13,10 @@ Read on the axes (seed 001):
 * :math:`\alpha_i`: the angle from :math:`z_{i-1}` to :math:`z_i`, about :math:`x_i`.
 
 :func:`dh_geometry` computes what is drawn (the two frames, the foot, the segments of
-:math:`d_i` and :math:`a_i`, the arcs of :math:`\theta_i` and :math:`\alpha_i`);
-:func:`plot_dh_row` draws it on a 3-D axes.
+:math:`d_i` and :math:`a_i`, the arcs of :math:`\theta_i` and :math:`\alpha_i`, and the two
+consecutive links with their joints: link :math:`i-1`, which carries frame :math:`i-1` and
+ends at joint :math:`i`, and link :math:`i`, which carries frame :math:`i` from joint
+:math:`i` to joint :math:`i+1`); :func:`plot_dh_row` draws it on a 3-D axes.
 """
 
 from __future__ import annotations
@@ -43,6 +45,16 @@ class DHGeometry:
     ``theta_arc`` (n×3, centred at the foot) turns from :math:`x_{i-1}` to :math:`x_i`
     about :math:`z_{i-1}`; ``alpha_arc`` (n×3, centred at :math:`o_i`) turns from
     :math:`z_{i-1}` to :math:`z_i` about :math:`x_i`.
+
+    The two links, each a 2×3 segment: ``link_prev`` (link :math:`i-1`) arrives along
+    :math:`x_{i-1}` at :math:`o_{i-1}` on joint :math:`i`'s axis (in DH, :math:`x_{i-1}` is
+    the common normal from joint :math:`i-1`'s axis, which lies beyond the picture);
+    ``link`` (link :math:`i`) runs along the common normal :math:`x_i` from the foot on
+    joint :math:`i`'s axis to :math:`o_i` on joint :math:`i+1`'s. The joints, each a 2×3
+    segment of its axis: ``joint`` (joint :math:`i`, on :math:`z_{i-1}`) spans
+    :math:`o_{i-1}` and the foot, where the two links meet it, and ``joint_next``
+    (joint :math:`i+1`, on :math:`z_i`) is centred at :math:`o_i`; both reach ``radius``/2
+    beyond those points.
     """
 
     theta: float
@@ -57,6 +69,10 @@ class DHGeometry:
     theta_arc: np.ndarray
     alpha_arc: np.ndarray
     radius: float
+    link_prev: np.ndarray
+    link: np.ndarray
+    joint: np.ndarray
+    joint_next: np.ndarray
 
 
 def _scalar(x, name: str) -> float:
@@ -105,7 +121,9 @@ def dh_geometry(theta, d, a, alpha, *, T_prev=None, radius=None, n=48) -> DHGeom
     T = T_prev @ dh_transform(theta=theta, d=d, a=a, alpha=alpha)
     o_prev, x_prev, z_prev = T_prev[:3, 3], T_prev[:3, 0], T_prev[:3, 2]
     foot = o_prev + d * z_prev
-    x_i = T[:3, 0]
+    x_i, o_i, z_i = T[:3, 0], T[:3, 3], T[:3, 2]
+    reach = 0.5 * radius
+    low, high = min(0.0, d) - reach, max(0.0, d) + reach      # along z_{i-1}, from o_{i-1}
     return DHGeometry(
         theta, d, a, alpha, T_prev, T, foot,
         d_segment=np.stack([o_prev, foot]),
@@ -113,6 +131,10 @@ def dh_geometry(theta, d, a, alpha, *, T_prev=None, radius=None, n=48) -> DHGeom
         theta_arc=_arc(foot, z_prev, x_prev, theta, radius, int(n)),
         alpha_arc=_arc(T[:3, 3], x_i, z_prev, alpha, radius, int(n)),
         radius=radius,
+        link_prev=np.stack([o_prev - 1.5 * radius * x_prev, o_prev]),
+        link=np.stack([foot, o_i]),
+        joint=np.stack([o_prev + low * z_prev, o_prev + high * z_prev]),
+        joint_next=np.stack([o_i - 2 * reach * z_i, o_i + 2 * reach * z_i]),
     )
 
 
@@ -121,8 +143,21 @@ def _line(ax, points, **style):
     return ax.plot(points[:, 0], points[:, 1], points[:, 2], **style)[0]
 
 
+def _cylinder(ax, segment, radius, n=20, **style):
+    """An open cylinder of ``radius`` about the 2×3 ``segment``, as a surface."""
+    p, q = segment
+    u = (q - p) / np.linalg.norm(q - p)
+    e = np.cross(u, [1.0, 0.0, 0.0] if abs(u[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e /= np.linalg.norm(e)
+    f = np.cross(u, e)
+    t = np.linspace(0.0, 2.0 * np.pi, n)
+    ring = radius * (np.cos(t)[:, None] * e + np.sin(t)[:, None] * f)      # n×3
+    X = np.stack([p + ring, q + ring])                                      # 2×n×3
+    return ax.plot_surface(X[..., 0], X[..., 1], X[..., 2], **style)
+
+
 def plot_dh_row(ax, theta, d, a, alpha, *, T_prev=None, radius=None, frame_length=None,
-                index="i"):
+                index="i", links=True):
     r"""Draw the standard DH row ``(theta, d, a, alpha)`` on the 3-D axes ``ax``.
 
     Shows the joint axes :math:`z_{i-1}` (joint :math:`i`) and :math:`z_i` (joint
@@ -130,14 +165,20 @@ def plot_dh_row(ax, theta, d, a, alpha, *, T_prev=None, radius=None, frame_lengt
     segments of :math:`d_i` (along :math:`z_{i-1}`) and :math:`a_i` (along the common
     normal :math:`x_i`), and the arcs of :math:`\theta_i` (about :math:`z_{i-1}`, from a
     dashed copy of :math:`x_{i-1}` at the foot of the normal) and :math:`\alpha_i` (about
-    :math:`x_i`, from a dashed copy of :math:`z_{i-1}` at :math:`o_i`). ``index`` names
-    the row in the labels. Returns ``(geometry, artists)``: the :class:`DHGeometry` and a
-    dict of the lines drawn (``"d"``, ``"a"``, ``"theta"``, ``"alpha"``, ``"z_prev"``,
-    ``"z_next"``, ``"x_prev_copy"``, ``"z_prev_copy"``).
+    :math:`x_i`, from a dashed copy of :math:`z_{i-1}` at :math:`o_i`). With ``links``
+    (the default) it draws the two consecutive links too, as grey bars — link
+    :math:`i-1` arriving at joint :math:`i`, link :math:`i` from joint :math:`i` to joint
+    :math:`i+1` — and the two joints as translucent cylinders on their axes. ``index``
+    names the row in the labels. Returns ``(geometry, artists)``: the :class:`DHGeometry`
+    and a dict of what was drawn (the lines ``"d"``, ``"a"``, ``"theta"``, ``"alpha"``,
+    ``"z_prev"``, ``"z_next"``, ``"x_prev_copy"``, ``"z_prev_copy"``, and with ``links``
+    the lines ``"link_prev"``, ``"link"`` and the surfaces ``"joint"``, ``"joint_next"``).
     """
     g = dh_geometry(theta, d, a, alpha, T_prev=T_prev, radius=radius)
     if not isinstance(index, str) or not index:
         raise KinlibError(f"index: expected a non-empty label such as 'i' or '2', got {index!r}")
+    if not isinstance(links, bool):
+        raise KinlibError(f"links: expected True or False, got {links!r}")
     if index.isdigit():
         now, before, after = index, str(int(index) - 1), str(int(index) + 1)
     else:
@@ -164,6 +205,16 @@ def plot_dh_row(ax, theta, d, a, alpha, *, T_prev=None, radius=None, frame_lengt
                                **helper)
     art["z_prev_copy"] = _line(ax, [o_i, o_i + 1.3 * g.radius * z_prev], **helper)
     art["foot"] = ax.scatter(*g.foot, color="black", s=12)
+    if links:
+        bar = dict(color="0.55", lw=9.0, alpha=0.4, solid_capstyle="round")
+        art["link_prev"] = _line(ax, g.link_prev, **bar)
+        art["link"] = _line(ax, g.link, **bar)
+        ax.text(*g.link_prev[0], f"link {before}  ", color="0.3", ha="right")
+        ax.text(*(g.link.mean(axis=0) - 0.6 * g.radius * z_prev), f"link {now}",
+                color="0.3", ha="center", va="top")
+        body = dict(color="tab:cyan", alpha=0.25, linewidth=0.0, shade=False)
+        art["joint"] = _cylinder(ax, g.joint, 0.22 * g.radius, **body)
+        art["joint_next"] = _cylinder(ax, g.joint_next, 0.22 * g.radius, **body)
     art["d"] = _line(ax, g.d_segment, color="tab:orange", lw=3.0)
     art["a"] = _line(ax, g.a_segment, color="tab:purple", lw=3.0)
     art["theta"] = _line(ax, g.theta_arc, color=AXIS_COLORS[2], lw=2.0)

@@ -104,13 +104,15 @@ def gimbal_rings(angles, seq: str = "ZYX", *, radii=RING_RADII, n: int = 73) -> 
 
 
 def plot_gimbal(ax, angles, seq: str = "ZYX", *, radii=RING_RADII, body: bool = True,
-                fit: bool = True, legend: bool = True):
+                fit: bool = True, legend: bool = True, ticks: bool = False):
     """Draw the gimbal at ``angles`` on a 3-D axes: each ring in the colour of its axis
     letter (x red, y green, z blue), its axis as a thin dashed line, its mark as a dot and,
     with ``body``, the frame of the body it carries (the columns of R).
 
     ``fit`` sets equal limits around the rings (call ``ax.cla()`` before redrawing into the
-    same axes). Returns the three rings' lines, outer first.
+    same axes) and, unless ``ticks``, leaves the axes without tick labels: the rings' size
+    says nothing, and without ticks a picture renders faster (an animation renders every
+    frame). Returns the three rings' lines, outer first.
 
     >>> import matplotlib.pyplot as plt
     >>> from kinlib.plot import axes_3d
@@ -140,6 +142,10 @@ def plot_gimbal(ax, angles, seq: str = "ZYX", *, radii=RING_RADII, body: bool = 
         ax.set_ylim(-lim, lim)
         ax.set_zlim(-lim, lim)
         ax.set_box_aspect((1, 1, 1))
+        if not ticks:
+            ax.set_xticks([])
+            ax.set_yticks([])
+            ax.set_zticks([])
         ax.set_xlabel("x")
         ax.set_ylabel("y")
         ax.set_zlabel("z")

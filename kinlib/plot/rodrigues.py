@@ -21,10 +21,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import as_array, as_unit_vectors
+from .._validate import as_array, as_unit_vectors, is_symbolic
 from ..errors import KinlibError
 
-__all__ = ["RodriguesParts", "rodrigues_parts", "plot_rodrigues"]
+__all__ = ["RodriguesParts", "split_along_axis", "rodrigues_parts", "plot_rodrigues"]
 
 
 @dataclass(frozen=True)
@@ -52,6 +52,38 @@ def _one(x, name):
     return a
 
 
+def split_along_axis(b, axis):
+    r"""The parts of ``b`` along and across ``axis``: ``(b_par, b_perp)``, with
+    :math:`b_\parallel = (k\cdot b)\,k` and :math:`b_\perp = b - b_\parallel`.
+
+    Numbers: ``b`` and ``axis`` are 3-vectors, the axis is normalised (a zero axis raises
+    :class:`KinlibError`) and the parts are numpy arrays. Sympy: ``b`` and ``axis`` are 3×1
+    matrices (or sequences of three expressions), the axis is taken as given, i.e. unit (as
+    in :func:`kinlib.matrix_from_axis_angle`), and the parts are 3×1 ``sympy.Matrix``.
+
+    >>> split_along_axis([1.0, 2.0, 3.0], [0.0, 0.0, 2.0])
+    (array([0., 0., 3.]), array([1., 2., 0.]))
+    >>> import sympy as sp
+    >>> b_par, b_perp = split_along_axis(sp.symbols("x y z"), [0, 0, 1])
+    >>> b_par.T, b_perp.T
+    (Matrix([[0, 0, z]]), Matrix([[x, y, 0]]))
+    """
+    if is_symbolic(b, axis):
+        import sympy as sp
+
+        v, k = (sp.Matrix(list(x)) if not isinstance(x, sp.MatrixBase) else x.reshape(
+            len(x), 1) for x in (b, axis))
+        if v.shape != (3, 1) or k.shape != (3, 1):
+            raise KinlibError(f"b, axis: expected two 3-vectors, got shapes {v.shape} and "
+                              f"{k.shape}")
+        par = k * (k.T * v)[0, 0]
+        return par, v - par
+    v = _one(b, "b")
+    k = as_unit_vectors(_one(axis, "axis"), "axis")
+    par = (k @ v) * k
+    return par, v - par
+
+
 def rodrigues_parts(b, axis, angle, *, n: int = 73) -> RodriguesParts:
     """Split ``b`` along ``axis`` (normalised; a zero axis raises) and turn it by ``angle``
     (radians), the way seed 000 derives Rodrigues' formula.
@@ -71,8 +103,7 @@ def rodrigues_parts(b, axis, angle, *, n: int = 73) -> RodriguesParts:
         raise KinlibError(f"n: expected a whole number of points on the circle, at least 8, "
                           f"got {n!r}")
     t = float(t)
-    par = (k @ v) * k
-    perp = v - par
+    par, perp = split_along_axis(v, k)
     kxb = np.cross(k, v)
 
     def turned(s):

@@ -31,6 +31,8 @@ WRONG = {
     "02.2": [("b", "order"), ("c", "commute")],
     "02.3": [
         (T_BC_e @ T_AB_e, "order"),
+        (kl.transform(kl.rotx(90), [0.0, 1.0, 0.0])            # degrees into rotx
+         @ kl.transform(kl.rotz(30), [2.0, 0.0, 0.5]), "degrees"),
         (T_AB_e * T_BC_e, "elementwise"),
         (with_column(T_AB_e[:3, :3] @ T_BC_e[:3, :3], T_AB_e[:3, 3] + T_BC_e[:3, 3]), "offset"),
     ],

@@ -7,7 +7,7 @@ import kinlib as kl
 
 a, b, g = sp.symbols("alpha beta gamma", real=True)
 c, s = sp.cos, sp.sin
-R_try = kl.matrix_from_euler([0.3, -0.5, 1.2], "ZYX")
+R_try = kl.matrix_from_axis_angle([1.0, -1.0, 2.0], 1.0)
 
 
 def zyx_generic(R):
@@ -70,6 +70,8 @@ WRONG = {
         (kl.rotx(g) * kl.roty(b) * kl.rotz(a), "extrinsic"),     # in the order performed
         (similarity_backwards(), "similarity"),
         (kl.rotz(g) * kl.roty(b) * kl.rotx(a), "swapped"),       # α about x, the first turn
+        (kl.rotx(a) * kl.roty(b) * kl.rotz(g), "sequence"),      # α-β-γ about x-y-z, in turn
+        (kl.rotz(a) * Ry_by_hand * kl.rotx(g), "R_Y sign"),
     ],
     "03.3": [
         (zyx_generic(R_try), "sequence"),                        # (α, β, γ) not reversed

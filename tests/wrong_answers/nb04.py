@@ -16,5 +16,6 @@ WRONG = {
         ([-np.pi / 2, np.pi / 2], "tait-bryan"),   # the lock of Z-Y-X
         ([0, 180], "degrees"),
         ([0.0], "missing"),
+        ([0, 3.14], "rounded"),                    # π typed as 3.14
     ],
 }

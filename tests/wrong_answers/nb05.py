@@ -9,11 +9,20 @@ kx, ky, kz = sp.symbols("k_x k_y k_z", real=True)
 k = sp.Matrix([kx, ky, kz])
 b = sp.Matrix(sp.symbols("b_x b_y b_z", real=True))
 
-R_try = kl.matrix_from_axis_angle([0.0, 0.6, 0.8], 2.0)
+# 05.3: the formulas for the notebook's R_try
+R_try = kl.matrix_from_euler([0.7, -1.1, 0.4], "ZYX")
 theta = np.arccos((np.trace(R_try) - 1) / 2)
 skew_part = np.array([R_try[2, 1] - R_try[1, 2], R_try[0, 2] - R_try[2, 0],
                       R_try[1, 0] - R_try[0, 1]])
-k_cay = np.array([2.0, -1.0, 2.0]) / 3.0
+
+# 05.4: the notebook's R_cay_try, by both routes
+R_cay = kl.matrix_from_euler(np.deg2rad([30.0, -50.0, 80.0]), "ZYX")
+I3 = np.eye(3)
+theta_cay = np.arccos((np.trace(R_cay) - 1) / 2)
+k_cay = np.array([R_cay[2, 1] - R_cay[1, 2], R_cay[0, 2] - R_cay[2, 0],
+                  R_cay[1, 0] - R_cay[0, 1]]) / (2 * np.sin(theta_cay))
+S_wrong_side = (I3 - R_cay) @ np.linalg.inv(I3 + R_cay)    # solved with the sign flipped
+S_cay = (R_cay - I3) @ np.linalg.inv(R_cay + I3)
 
 WRONG = {
     "05.1": [
@@ -29,6 +38,8 @@ WRONG = {
         (k.cross(b), "quarter turn"),
         (k.cross(k).cross(b), "associative"),      # brackets in the wrong place
         (k * k.dot(b), "parallel"),
+        (b - k * k.dot(b), "dot product"),         # right, but not with cross products
+        (b - k * (k.T * b), "dot product"),        # b minus b∥ written as k kᵀ b
     ],
     "05.3": [
         # the skew part read as R_ij − R_ji: the axis of Rᵀ
@@ -37,9 +48,10 @@ WRONG = {
         ((skew_part, theta), "unit"),              # forgot to divide by 2 sin θ
     ],
     "05.4": [
-        (np.tan(np.deg2rad(100)) * k_cay, "half angle"),
-        (np.tan(100 / 2) * k_cay, "degrees"),
-        (np.sin(np.deg2rad(100) / 2) * k_cay, "quaternion"),
-        (-np.tan(np.deg2rad(100) / 2) * k_cay, "transposed"),
+        (np.array([S_wrong_side[2, 1], S_wrong_side[0, 2], S_wrong_side[1, 0]]), "transposed"),
+        (np.array([S_cay[1, 0], S_cay[0, 2], S_cay[2, 1]]), "swapped"),   # seed 002's layout
+        (np.tan(theta_cay) * k_cay, "half angle"),
+        (np.sin(theta_cay / 2) * k_cay, "quaternion"),
+        (kl.vee(R_cay - R_cay.T) / 2, "skew part"),    # the skew part of R taken for S
     ],
 }

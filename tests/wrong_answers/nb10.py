@@ -51,6 +51,7 @@ WRONG = {
         # the law of cosines with the triangle's angle at the elbow, r² = l1² + l2² − 2 l1 l2 cos γ
         ((l1**2 + l2**2 - x**2 - y**2) / (2 * l1 * l2), "sign"),
         ((x**2 + y**2 - l1**2 - l2**2) / (l1 * l2), "factor 2"),
+        ((x**2 + y**2 - l1**2 - l2**2) / 2 * l1 * l2, "precedence"),   # typed by hand
         (sp.solve(sp.Eq(x**2 + y**2, l1**2 + l2**2 + 2 * l1 * l2 * c2), c2), "type"),
     ],
     "10.2": [(ik_up, "other elbow"), (ik_acos, "acos"), (ik_atan, "atan"),

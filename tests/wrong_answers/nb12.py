@@ -11,7 +11,8 @@ alpha, gamma = sp.Function("alpha", real=True)(t), sp.Function("gamma", real=Tru
 rates = {alpha.diff(t): sp.Symbol(r"\dot{\alpha}", real=True),
          gamma.diff(t): sp.Symbol(r"\dot{\gamma}", real=True),
          alpha: sp.Symbol("alpha", real=True), gamma: sp.Symbol("gamma", real=True)}
-R = kl.rotz(alpha) * kl.rotx(gamma)
+R = kl.rotx(gamma) * kl.rotz(alpha)          # the tilting turntable of exercise 12.1
+R_reversed = kl.rotz(alpha) * kl.rotx(gamma)  # the product in the other order
 
 
 def omega_of(W):
@@ -41,6 +42,8 @@ WRONG = {
         (omega_of(R.T * R.diff(t)), "frame"),          # the body angular velocity RᵀṘ
         (kl.vee((R.T * R.diff(t)).subs(rates)), "frame"),   # the same, not simplified
         (omega_of(R * R.diff(t).T), "sign"),           # R Ṙᵀ = (Ṙ Rᵀ)ᵀ
+        (omega_of(R_reversed.diff(t) * R_reversed.T), "order"),   # tilt and turn swapped
+        (sp.Matrix([rates[gamma.diff(t)], 0, rates[alpha.diff(t)]]), "axis"),   # γ̇ x + α̇ z
     ],
     "12.2": [
         (w_turntable + w_wheel, "frame"),                                   # frames mixed up

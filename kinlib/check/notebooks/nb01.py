@@ -44,20 +44,38 @@ EXERCISES = [
                                  "point, and so its length: ‖ᴬP‖ = ‖ᴮP‖ for every P needs "
                                  "ᴬP_BORG = 0, a pure rotation"),
             "c": ("rotation axis", "every rotation keeps lengths, whatever its axis: "
-                                   "‖R p‖² = pᵀRᵀR p = pᵀp")}),
+                                   "‖R p‖² = pᵀRᵀR p = pᵀp")},
+           explain="a rotation keeps every length, ‖R p‖² = pᵀRᵀR p = pᵀp; a translation "
+                   "moves the origin the vector is measured from, so the lengths change"),
     expression("01.2", "R_Y(θ) from the dot products of the axes", _roty_sym,
-               what="a 3×3 sympy Matrix", diagnoses=("transposed", "sign")),
+               what="a 3×3 sympy Matrix", diagnoses=("transposed", "sign"),
+               explain="R_Y(θ) = [[cos θ, 0, sin θ], [0, 1, 0], [−sin θ, 0, cos θ]]. Unlike "
+                       "R_X and R_Z, its −sin θ sits below the diagonal: about Y the positive "
+                       "turn takes Z to X (not X to Z), so ᴬX̂_B = (cos θ, 0, −sin θ)"),
     value("01.3", "predict", "independent constraints in RᵀR = I", lambda: 6,
           Mistake("symmetric", "RᵀR is symmetric: the equation for entry (i, j) is the one "
                                "for (j, i), so of its nine entries only six are independent",
                   lambda: 9),
-          Mistake("right angles", "three unit lengths, yes, but also three right angles "
-                                  "between the columns", lambda: 3), what="a number"),
-    value("01.4", "compute", "ᴮŶ_A: a row of ᴬR_B", lambda: _R_AB()[1, :],
+          Mistake("right angles", "3 is what remains, 9 − 6 free parameters (or only the "
+                                  "three unit lengths): the constraints are three unit "
+                                  "lengths and also three right angles between the columns",
+                  lambda: 3), what="a number"),
+    choice("01.4", "predict", "what RᵀR = I allows for det R",
+           {"a": "only +1", "b": "+1 or −1", "c": "any number except 0"}, "b",
+           {"a": ("handedness", "RᵀR = I alone gives det(R)² = det(RᵀR) = det(I) = 1, so ±1: "
+                                "a mirror diag(1, 1, −1) has orthonormal columns and det −1. "
+                                "What picks +1 is that the frame is right-handed"),
+            "c": ("orthonormal", "RᵀR = I says more than 'R has an inverse': det(Rᵀ) det(R) "
+                                 "= det(R)² = det(I) = 1, so det R is +1 or −1")},
+           explain="det(R)² = det(Rᵀ) det(R) = det(RᵀR) = det(I) = 1. Which of the two signs "
+                   "a rotation has: the demonstration"),
+    value("01.5", "compute", "ᴮŶ_A: a row of ᴬR_B", lambda: _R_AB()[1, :],
           TRANSPOSED.of(lambda: _R_AB()[:, 1], "that is a column: ᴬŶ_B, the Y axis of {B} "
                                                "in {A}. The axes of {A} written in {B} are "
-                                               "the rows of ᴬR_B (ᴮR_A = ᴬR_Bᵀ)")),
-    value("01.5", "compute", "ᴬP = ᴬR_B ᴮP + ᴬP_BORG", lambda: _rx45() @ P_B + P_BORG,
+                                               "the rows of ᴬR_B (ᴮR_A = ᴬR_Bᵀ)"),
+          explain="ᴮŶ_A is the second column of ᴮR_A = ᴬR_Bᵀ, i.e. the second row of ᴬR_B: "
+                  "`R_AB[1, :]`"),
+    value("01.6", "compute", "ᴬP = ᴬR_B ᴮP + ᴬP_BORG", lambda: _rx45() @ P_B + P_BORG,
           Mistake("translation", "the translation is missing: add ᴬP_BORG = (0, 0, 2), the "
                                  "origin of {B} in {A}", lambda: _rx45() @ P_B),
           TRANSPOSED.of(lambda: _rx45().T @ P_B + P_BORG,
@@ -65,11 +83,16 @@ EXERCISES = [
           Mistake("order", "you added the offset before rotating: ᴬP_BORG is already in {A}, "
                            "so it is added after the rotation", lambda: _rx45() @ (P_B + P_BORG)),
           DEGREES.of(lambda: np.array([[1, 0, 0], [0, np.cos(-45), -np.sin(-45)],
-                                       [0, np.sin(-45), np.cos(-45)]]) @ P_B + P_BORG)),
-    value("01.6", "compute", "a fixed point described in a frame turned +30°", _turned,
+                                       [0, np.sin(-45), np.cos(-45)]]) @ P_B + P_BORG),
+          explain="ᴬP = ᴬR_B ᴮP + ᴬP_BORG ≈ (0, 1.414, 2): rotate ᴮP into the orientation "
+                  "of {A} (the intermediate frame {C}), then add the origin of {B}"),
+    value("01.7", "compute", "a fixed point described in a frame turned +30°", _turned,
           TRANSPOSED.of(lambda: _turned() * [1, -1, 1],
                         "that is the operator Rz(+30°) ᴬP, which moves the point forward; "
                         "describing the fixed point in the turned frame uses ᴮR_A = ᴬR_Bᵀ "
                         "= Rz(−30°)"),
-          DEGREES.of(lambda: np.array([np.cos(30), -np.sin(30), 0.0]))),
+          DEGREES.of(lambda: np.array([np.cos(30), -np.sin(30), 0.0])),
+          explain="ᴮP = ᴬR_Bᵀ ᴬP = Rz(−30°)(1, 0, 0) = (cos 30°, −sin 30°, 0) ≈ (0.866, −0.5, 0): "
+                  "seen from the frame turned forward, the fixed point appears turned "
+                  "backward"),
 ]

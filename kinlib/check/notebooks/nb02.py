@@ -4,7 +4,7 @@ inverse, the cost of the two orders of products."""
 import numpy as np
 
 from .._verdict import Mistake
-from ..mistakes import ORDER, SIGN, SWAPPED, TRANSPOSED
+from ..mistakes import DEGREES, ORDER, SIGN, SWAPPED, TRANSPOSED
 from ._make import choice, value
 
 Q = np.array([0.3, -0.2, 0.5])
@@ -16,11 +16,13 @@ def _translation(q):
     return transform(p=q)
 
 
-def _compound_givens():
+def _compound_givens(to_radians=np.deg2rad):
+    """ᴬT_B ({B} turned 90° about X̂_A, origin (0, 1, 0)) and ᴮT_C (30° about Ẑ_B, origin
+    (2, 0, 0.5)), as the notebook describes them."""
     from ... import rotx, rotz, transform
 
-    return (transform(rotx(np.deg2rad(90)), [0.0, 1.0, 0.0]),
-            transform(rotz(np.deg2rad(30)), [2.0, 0.0, 0.5]))
+    return (transform(rotx(to_radians(90)), [0.0, 1.0, 0.0]),
+            transform(rotz(to_radians(30)), [2.0, 0.0, 0.5]))
 
 
 def _inverse_given():
@@ -80,7 +82,11 @@ EXERCISES = [
                         "Q is in the bottom row: with column vectors, [P₂; 1] = T [P₁; 1], "
                         "the translation is the last column and the bottom row is "
                         "(0, 0, 0, 1)"),
-          what="a 4×4 array"),
+          what="a 4×4 array",
+          explain="the entries are +q_i: the operator moves the point forward, "
+                  "ᴬP₂ = ᴬP₁ + ᴬQ. Describing a point that stays put in a frame moved by Q "
+                  "takes the inverse, with −q_i: seed 002's 'a vector moved forward = the "
+                  "frame moved backward'."),
     choice("02.2", "predict", "is the order of rotation and translation important?",
            {"a": "T_Trans(Q) T_Rot(R): rotate first, then translate",
             "b": "T_Rot(R) T_Trans(Q): translate first, then rotate",
@@ -89,9 +95,15 @@ EXERCISES = [
                            "translated point too: its last column is R q, not q. The "
                            "operator applied first stands on the right"),
             "c": ("commute", "they do not commute: rotating after translating also turns "
-                             "the translation (R q ≠ q unless q lies on the rotation axis)")}),
+                             "the translation (R q ≠ q unless q lies on the rotation axis)")},
+           explain="the operator applied first stands on the right: T_Trans(Q) T_Rot(R) "
+                   "rotates about the origin, then translates. The demonstration below "
+                   "shows both products."),
     value("02.3", "compute", "the compound transform ᴬT_C = ᴬT_B ᴮT_C",
           lambda: np.matmul(*_compound_givens()),
+          DEGREES.of(lambda: np.matmul(*_compound_givens(float)),
+                     "kl.rotx(90) turns by 90 radians: write the angles as np.deg2rad(90) "
+                     "and np.deg2rad(30)"),
           ORDER.of(lambda: np.matmul(*_compound_givens()[::-1]),
                    "this is ᴮT_C ᴬT_B: read the frames like a chain, ᴬT_B ᴮT_C = ᴬT_C "
                    "(the inner frame letters meet)"),
@@ -102,14 +114,18 @@ EXERCISES = [
                             "rotated first, ᴬP_CORG = ᴬR_B ᴮP_CORG + ᴬP_BORG",
                   lambda: _blocks(_compound_givens()[0][:3, :3] @ _compound_givens()[1][:3, :3],
                                   _compound_givens()[0][:3, 3] + _compound_givens()[1][:3, 3])),
-          what="a 4×4 array"),
+          what="a 4×4 array",
+          explain="ᴬT_C = ᴬT_B ᴮT_C: the inner frame letters meet. Its blocks are "
+                  "ᴬR_C = ᴬR_B ᴮR_C and ᴬP_CORG = ᴬR_B ᴮP_CORG + ᴬP_BORG."),
     choice("02.4", "predict", "the geometrical description of −Rᵀp",
            {"a": "the origin of {A}, described in {B}", "b": "the origin of {B}, described in {A}",
             "c": "the vector from A's origin to B's origin, in B's axes"}, _inverse_meaning(),
            {"b": ("transposed", "that is p = ᴬP_BORG itself, the last column of ᴬT_B; the "
                                 "inverse describes {A} in {B}: the frames are swapped"),
             "c": ("sign", "that vector is +Rᵀp; the minus sign reverses it: −Rᵀp leads from "
-                          "B's origin back to A's origin, ᴮP_AORG")}),
+                          "B's origin back to A's origin, ᴮP_AORG")},
+           explain="−Rᵀp = ᴮP_AORG, the origin of {A} described in {B}: the demonstration "
+                   "below lays it off from B's origin and lands on A's."),
     value("02.5", "compute", "the closed-form inverse ᴮT_A", lambda: _inverse_with(-1, True),
           SIGN.of(lambda: _inverse_with(+1, True),
                   "the translation has the wrong sign: ᴮP = Rᵀ(ᴬP − ᴬP_BORG), so the last "
@@ -124,7 +140,9 @@ EXERCISES = [
                         "you transposed the whole 4×4 matrix: only the rotation block is "
                         "transposed; the translation becomes the column −Rᵀp and the bottom "
                         "row stays (0, 0, 0, 1)"),
-          what="a 4×4 array"),
+          what="a 4×4 array",
+          explain="ᴮT_A = [Rᵀ, −Rᵀp; 0 0 0 1]: a transpose and one matrix–vector product "
+                  "instead of a general 4×4 inverse, and ᴮT_A ᴬT_B = I exactly."),
     value("02.6", "predict", "multiplications of ᴬT_B(ᴮT_C ᶜP) and (ᴬT_B ᴮT_C) ᶜP", _mults,
           SWAPPED.of(lambda: _mults()[::-1], "the two counts are swapped: the order that "
                                              "multiplies the two matrices first is the "
@@ -137,5 +155,7 @@ EXERCISES = [
           Mistake("final product", "after the 4×4 × 4×4 product (64) the compound still "
                                    "multiplies the point: 16 more",
                   lambda: np.array([32, 4 ** 3])),
-          what="two numbers"),
+          what="two numbers",
+          explain="32 against 80: for one point, pass the point through the chain; the "
+                  "count below shows when the compound, computed once, pays off."),
 ]

@@ -101,7 +101,7 @@ def _near(M, E, seed: int = 3) -> bool:
     return True
 
 
-def _derive(id, title, expected, named, diagnoses):
+def _derive(id, title, expected, named, diagnoses, explain=""):
     """A derivation judged exactly (:func:`expression_judge`: right, or right up to a sign,
     transposed, two angles swapped). An answer that is one of the ``named`` mistakes
     ``(key, message, model)`` — screened at random points, then confirmed exactly with
@@ -119,22 +119,24 @@ def _derive(id, title, expected, named, diagnoses):
                 if _near(M, W) and sym_equal(M, W):
                     return Verdict(False, key, message, E)
         return base(args, got)
-    return judged(id, "derive", title, judge, diagnoses=diagnoses)
+    return judged(id, "derive", title, judge, diagnoses=diagnoses, explain=explain)
 
 
 _EXTRINSIC_03_1 = ("this is Rx(γ) Ry(β) Rz(α): the turns multiplied right to left, as for "
                    "fixed axes. About the moving axes each new turn is described in the frame "
-                   "before it and multiplies on the right: ᴬR_B = ᴬR_B′ ᴮ′R_B″ ᴮ″R_B = "
-                   "Rz(α) Ry(β) Rx(γ)")
+                   "before it and multiplies on the right, as in ᴬR_B = ᴬR_B′ ᴮ′R_B″ ᴮ″R_B")
+_RY_SIGN = ("the sines of R_Y(β) have swapped signs: R_Y(β) = [[cβ, 0, sβ], [0, 1, 0], "
+            "[−sβ, 0, cβ]] (turning about y takes z towards x)")
 _EXTRINSIC_03_2 = ("this is Rx(γ) Ry(β) Rz(α): you multiplied the turns left to right, as for "
                    "moving axes. A turn about a fixed axis multiplies on the left: the "
                    "similarity transform gives ᴬR_B″ = ᴬR_B′ (ᴬR_B′)ᵀ Ry(β) ᴬR_B′ = Ry(β) Rx(γ)")
 
 
 def _R_try():
-    from ... import matrix_from_euler
+    """The notebook's R_try: 1 rad about (1, -1, 2), its angles not in sight."""
+    from ... import matrix_from_axis_angle
 
-    return matrix_from_euler([0.3, -0.5, 1.2], "ZYX")
+    return matrix_from_axis_angle([1.0, -1.0, 2.0], 1.0)
 
 
 _FIXED_MESSAGES = {
@@ -222,19 +224,32 @@ EXERCISES = [
              ("sequence", "this is Rx(α) Ry(β) Rz(γ), the X-Y-Z Euler sequence: in Z-Y-X, "
                           "α turns about z, β about the new y, γ about the newest x",
               _letters_as_xyz),
-             ("R_Y sign", "the sines of R_Y(β) have swapped signs: R_Y(β) = [[cβ, 0, sβ], "
-                          "[0, 1, 0], [−sβ, 0, cβ]] (turning about y takes z towards x)",
-              _roty_sign)],
-            ("extrinsic", "sequence", "swapped", "transposed", "R_Y sign")),
+             ("R_Y sign", _RY_SIGN, _roty_sign)],
+            ("extrinsic", "sequence", "swapped", "transposed", "R_Y sign"),
+            explain="each turn is about an axis of the moving frame, an elementary rotation "
+                    "described in the frame before it, so it multiplies on the right: "
+                    "ᴬR_B = Rz(α) Ry(β) Rx(γ). Seed 001 prints this product entry by entry "
+                    "as its eq. 4.66 (the roll–pitch–yaw matrix)."),
     _derive("03.2", "ᴬR_B for X-Y-Z fixed angles", _xyz_fixed,
             [("extrinsic", _EXTRINSIC_03_2, _reversed),
              ("similarity", "the similarity transform is the wrong way round: a rotation M "
                             "about a fixed axis, described in the current frame {B′}, is "
                             "N = (ᴬR_B′)⁻¹ M ᴬR_B′, the inverse on the left",
-              _similarity_backwards)],
-            ("extrinsic", "similarity", "swapped")),
+              _similarity_backwards),
+             ("sequence", "this is Rx(α) Ry(β) Rz(γ): the angle about the fixed x is γ, about "
+                          "the fixed z α (the angles (γ, β, α) go with x, y, z), and a turn "
+                          "about a fixed axis multiplies on the left", _letters_as_xyz),
+             ("R_Y sign", _RY_SIGN, _roty_sign)],
+            ("extrinsic", "similarity", "sequence", "R_Y sign", "swapped"),
+            explain="a turn about a fixed axis multiplies on the left: the similarity "
+                    "transforms collapse, ᴬR_B″ = ᴬR_B′ (ᴬR_B′)⁻¹ Ry(β) ᴬR_B′ = Ry(β) Rx(γ), "
+                    "then ᴬR_B = Rz(α) Ry(β) Rx(γ) — the matrix of the Z-Y-X Euler angles of "
+                    "03.1."),
     judged("03.3", "compute", "the X-Y-Z fixed angles of R_try", _fixed_angles_judge(),
-           diagnoses=("sequence", "extrinsic", "degrees")),
+           diagnoses=("sequence", "extrinsic", "degrees"),
+           explain="x-y-z fixed angles and Z-Y-X Euler angles both build Rz(α) Ry(β) Rx(γ): "
+                   "the fixed angles (γ, β, α) are the Euler angles (α, β, γ) in reverse "
+                   "order."),
     choice("03.4", "predict", "the physical interpretation of the Z-Y-X singularity",
            {"a": "the first and third rotation axes line up: a degree of freedom is lost",
             "b": "R becomes singular (det R = 0)",
@@ -246,8 +261,14 @@ EXERCISES = [
                                  "none: at β = +90° any pair with the same γ − α gives R"),
             "d": ("numerical", "no formula can help: at cos β = 0 the entries r11, r21, r32, "
                                "r33 that carry α and γ all vanish, and R depends on γ − α (or "
-                               "γ + α) only — the information is not in R")}),
+                               "γ + α) only — the information is not in R")},
+           explain="at β = ±90° the newest x lies along ∓Ẑ_A: the first and third turns are "
+                   "about one line. R is still a rotation, reached by infinitely many (α, γ); "
+                   "the demonstration below shows it."),
     judged("03.5", "implement", "Z-Y-X Euler angles with both gimbal-lock branches",
            _zyx_judge(), cases=_zyx_cases(),
-           diagnoses=("sign", "gimbal", "sequence", "degrees")),
+           diagnoses=("sign", "gimbal", "sequence", "degrees"),
+           explain="at the lock R holds only γ − α (β = +90°) or γ + α (β = −90°): with α = 0 "
+                   "your γ carries the whole turn about the aligned axis, Craig's convention "
+                   "and kinlib's."),
 ]

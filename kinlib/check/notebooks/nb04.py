@@ -83,6 +83,9 @@ def _locks_judge(args, got):
         return Verdict(False, "nan", "your list holds NaN or infinity", right)
     if _same_set(a, right):
         return RIGHT
+    if _same_set(a, right, atol=0.01):
+        return Verdict(False, "rounded", "close, but rounded: write π as np.pi, not 3.14",
+                       right)
     if _same_set(a, np.rad2deg(right)):
         return Verdict(False, DEGREES.key, "these are degrees: give the angles in radians "
                                            "(np.pi, not 180)", right)
@@ -111,7 +114,9 @@ EXERCISES = [
           Mistake("unchanged", "γ cannot stay as it was: with α raised by 40°, the same "
                                "orientation needs γ − α unchanged, so γ changes too",
                   lambda: LOCKED[2]),
-          accept=_turns, what="a number"),
+          accept=_turns, what="a number",
+          explain="at β = +90° the matrix depends on γ − α alone: raising α by 40° needs γ "
+                  "raised by 40° too, γ' = −30° + 40° = 10° (give or take a whole turn)"),
     value("04.2", "predict", "independent axes at gimbal lock", _lock_rank,
           Mistake("coincide", "two axes line up, but the third (the middle one, β's) is "
                               "still perpendicular to them: the line they share and the "
@@ -142,6 +147,9 @@ EXERCISES = [
                                "takes the arm. Seed 000 turns about the new y and the new z "
                                "(moving axes), so the matrices multiply left to right: "
                                "R = Rx Ry Rz")}),
-    judged("04.5", "compute", "the middle angles at which X-Y-X locks", _locks_judge,
-           diagnoses=("tait-bryan", DEGREES.key, "missing")),
+    judged("04.5", "predict", "the middle angles at which X-Y-X locks", _locks_judge,
+           diagnoses=("tait-bryan", DEGREES.key, "missing", "rounded"),
+           explain="n3 = R_X(α) R_Y(β) e_x = R_X(α) (cos β, 0, −sin β) is ±e_x exactly where "
+                   "sin β = 0: at β = 0 the last axis is the first, at β = π it points the "
+                   "other way along the same line"),
 ]

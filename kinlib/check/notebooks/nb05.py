@@ -1,12 +1,12 @@
 """Notebook 05 · angle-axis and Cayley: the split b = b∥ + b⊥ (seed 000), the inverse
-problem (angle from the trace, axis from the skew part), Cayley's parameters tan(θ/2) k."""
+problem (angle from the trace, axis from the skew part), Cayley's parameters of a matrix."""
 
 import numpy as np
 
 from .._symbolic import expression_judge
 from .._verdict import Mistake, Verdict
 from ..judges import axis_angle_judge
-from ..mistakes import DEGREES, HALF_ANGLE, SIGN, TRANSPOSED
+from ..mistakes import DEGREES, HALF_ANGLE, SIGN, SWAPPED, TRANSPOSED
 from ._make import judged, value
 
 
@@ -28,9 +28,12 @@ def _b_perp():
     return b - k * k.dot(b)
 
 
-def _split_judge(expected, near):
+def _split_judge(expected, near, form=None):
     """An exact sympy judge (k a unit vector) that also names the near misses ``near``:
-    ``(key, message, model)``, tried when the answer is not right and not the negative."""
+    ``(key, message, model)``, tried when the answer is not right and not the negative.
+    ``form``: ``(key, message, allowed, forbidden)``: a right answer that is, as a polynomial
+    (without |k| = 1), the ``forbidden`` model and not the ``allowed`` one is written in a
+    way the exercise excludes, and named so."""
     k, _ = _symbols()
     unit = [list(k)]   # one unit vector (nested: the probe of a wrong answer normalises it)
     base = expression_judge(expected, unit=unit, what="a 3×1 sympy Matrix in k and b")
@@ -41,7 +44,9 @@ def _split_judge(expected, near):
         from ...symbolic import sym_equal
 
         verdict = base(args, got)
-        if verdict.ok or verdict.key not in ("wrong", "shape", "type"):
+        if verdict.ok and form is None:
+            return verdict
+        if not verdict.ok and verdict.key not in ("wrong", "shape", "type"):
             return verdict
         try:
             g = sp.Matrix(got) if isinstance(got, list | tuple | np.ndarray) else got
@@ -50,6 +55,13 @@ def _split_judge(expected, near):
             g = g.xreplace({s: names[s.name] for s in g.free_symbols if s.name in names})
         except Exception:  # not something sympy reads: the base verdict stands
             return verdict
+        if verdict.ok:
+            key, message, allowed, forbidden = form
+            try:
+                excluded = (not sym_equal(g, allowed()) and sym_equal(g, forbidden()))
+            except Exception:  # outside what the exact reduction decides: it is right
+                excluded = False
+            return Verdict(False, key, message, expected()) if excluded else verdict
         for key, message, model in near:
             m = model()
             if isinstance(m, sp.MatrixBase) != isinstance(g, sp.MatrixBase):
@@ -93,50 +105,89 @@ _PERP_NEAR = [
      _sym(lambda k, b: k * k.dot(b))),
 ]
 
+_PERP_FORM = ("dot product", "that is b⊥ indeed, but written as b − (k·b) k, with a dot product "
+                             "(or as b minus your b∥): the exercise asks for cross products "
+                             "only. What does k × b do to b⊥, and what does one more cross "
+                             "product with k do to that?",
+              _sym(lambda k, b: -k.cross(k.cross(b))), _sym(lambda k, b: b - k * k.dot(b)))
+
 
 # 05.3: the inverse problem for the notebook's R_try
 def _R_try():
-    from ...axis_angle import matrix_from_axis_angle
+    from ...euler import matrix_from_euler
 
-    return matrix_from_axis_angle([0.0, 0.6, 0.8], 2.0)
+    return matrix_from_euler([0.7, -1.1, 0.4], "ZYX")
 
 
 def _axis_angle_of_R_try(args, got):
     return axis_angle_judge((_R_try(),), got)
 
 
-# 05.4: Cayley's parameters of a 100° turn about (2, −1, 2)/3
-K_CAY, DEG_CAY = np.array([2.0, -1.0, 2.0]) / 3.0, 100.0
+# 05.4: Cayley's parameters of the notebook's R_cay_try, a product of three turns
+def _R_cay():
+    from ...euler import matrix_from_euler
+
+    return matrix_from_euler(np.deg2rad([30.0, -50.0, 80.0]), "ZYX")
 
 
 def _s_cay():
-    from ...axis_angle import matrix_from_axis_angle
     from ...cayley import cayley_from_matrix
 
-    return cayley_from_matrix(matrix_from_axis_angle(K_CAY, np.deg2rad(DEG_CAY)))
+    return cayley_from_matrix(_R_cay())
+
+
+def _axis_angle_cay():
+    from ...axis_angle import axis_angle_from_matrix
+
+    return axis_angle_from_matrix(_R_cay())
+
+
+def _skew_part():
+    from ...rotations import vee
+
+    R = _R_cay()
+    return vee(R - R.T) / 2
 
 
 EXERCISES = [
     judged("05.1", "derive", "b∥, the part of b along the axis",
            _split_judge(_b_par, _PAR_NEAR),
-           diagnoses=(SIGN.key, "along b", "perpendicular", "operator", "scalar")),
+           diagnoses=(SIGN.key, "along b", "perpendicular", "operator", "scalar"),
+           explain="the operator is the projection matrix k kᵀ: b∥ = (k·b) k = k (kᵀ b) = "
+                   "(k kᵀ) b, and the rest is b⊥ = b − b∥"),
     judged("05.2", "derive", "b⊥ with cross products",
-           _split_judge(_b_perp, _PERP_NEAR),
-           diagnoses=(SIGN.key, "quarter turn", "associative", "parallel")),
+           _split_judge(_b_perp, _PERP_NEAR, _PERP_FORM),
+           diagnoses=(SIGN.key, "quarter turn", "associative", "parallel", "dot product"),
+           explain="k × b is b⊥ turned a quarter turn about k (k × b∥ = 0); one more cross "
+                   "product with k turns it another quarter, to −b⊥. So b⊥ = −k × (k × b), "
+                   "which is b − (k·b) k by the rule a × (b × c) = b (a·c) − c (a·b) and "
+                   "|k| = 1"),
     judged("05.3", "compute", "angle from the trace, axis from the skew part",
-           _axis_angle_of_R_try, diagnoses=("axis sign", DEGREES.key)),
-    value("05.4", "compute", "Cayley's parameters s = tan(θ/2) k", _s_cay,
-          HALF_ANGLE.of(lambda: np.tan(np.deg2rad(DEG_CAY)) * K_CAY,
+           _axis_angle_of_R_try, diagnoses=("axis sign", DEGREES.key, "unit"),
+           explain="the trace gives cos θ and the skew part sin θ k: for an angle well away "
+                   "from 0 and 180° that is all you need. Below: what happens near them"),
+    value("05.4", "compute", "Cayley's parameters of a rotation matrix", _s_cay,
+          TRANSPOSED.of(lambda: -_s_cay(), "that is −s, the parameters of Rᵀ, the opposite "
+                                           "turn: (I − S) R = I + S gives R − I = S (I + R), "
+                                           "so S = (R − I)(I + R)⁻¹, not (I − R)(I + R)⁻¹; "
+                                           "by the other route, the axis points the wrong way"),
+          SWAPPED.of(lambda: _s_cay()[::-1], "s_x and s_z are swapped: that is S read the way "
+                                             "seed 002 prints it (S₁₂ = −s_x); the skew matrix "
+                                             "of s, as kl.skew builds it, has S₃₂ = s_x, "
+                                             "S₁₃ = s_y, S₂₁ = s_z"),
+          HALF_ANGLE.of(lambda: np.tan(_axis_angle_cay()[1]) * _axis_angle_cay()[0],
                         "that is tan θ k: Cayley's parameters use the half angle, "
                         "s = tan(θ/2) k"),
-          DEGREES.of(lambda: np.tan(DEG_CAY / 2) * K_CAY,
-                     "np.tan took 50 as radians: convert the angle first, "
-                     "np.tan(np.deg2rad(100) / 2)"),
           Mistake("quaternion", "sin(θ/2) k is the vector part of the unit quaternion; "
                                 "Cayley's parameters divide it by the scalar part cos(θ/2): "
-                                "s = tan(θ/2) k", lambda: np.sin(np.deg2rad(DEG_CAY) / 2) * K_CAY),
-          TRANSPOSED.of(lambda: -_s_cay(), "that is s of Rᵀ, the opposite turn: the "
-                                           "axis points the wrong way (vee(R − Rᵀ), not "
-                                           "vee(Rᵀ − R))"),
-          what="a 3-vector"),
+                                "s = tan(θ/2) k",
+                  lambda: np.sin(_axis_angle_cay()[1] / 2) * _axis_angle_cay()[0]),
+          Mistake("skew part", "that is sin θ k, the skew part (R − Rᵀ)/2 of R read as a "
+                               "vector: Cayley's S is not the skew part of R. Solve "
+                               "(I − S) R = I + S for S", _skew_part),
+          what="a 3-vector",
+          explain="from (I − S) R = I + S: R − I = S (I + R), so S = (R − I)(I + R)⁻¹ "
+                  "(R and S commute, so the order does not matter), and tan(θ/2) k gives the "
+                  "same. Both need a rotation that is not a half turn: I + R must be "
+                  "invertible, tan(θ/2) finite"),
 ]

@@ -180,9 +180,14 @@ EXERCISES = [
             "b": ("symmetric", "r1 v2 + r2 v1 becomes r2 v1 + r1 v2 when 1 and 2 swap: the "
                                "same vector"),
             "d": ("unit", "unit or not, i j = k but j i = −k: the vector parts of q1 q2 and "
-                          "q2 q1 differ whenever v1 and v2 are not parallel")}),
+                          "q2 q1 differ whenever v1 and v2 are not parallel")},
+           explain="only the cross product cares about the order, v2 × v1 = −v1 × v2: "
+                   "q1 q2 − q2 q1 = (0, 2 v1 × v2)."),
     judged("06.2", "derive", "the matrix of p ↦ q p q̄ for q about z", _conjugation_judge(),
-           diagnoses=(CONJUGATE.key, HALF_ANGLE.key)),
+           diagnoses=(CONJUGATE.key, HALF_ANGLE.key),
+           explain="it is R_Z(θ), the rotation about z of notebook 01: its entries come out as "
+                   "cos²(θ/2) − sin²(θ/2) = cos θ and 2 sin(θ/2) cos(θ/2) = sin θ. The two half "
+                   "angles, one from q and one from q̄, add up to the whole angle."),
     value("06.3", "compute", "seed 002's Euler parameters as a kinlib quaternion", _q_seed,
           XYZW.of(lambda: _eps_seed002(_R_seed()),
                   "you kept seed 002's order (ε1, ε2, ε3, ε4): ε4 = cos θ/2 is the scalar and "
@@ -195,7 +200,10 @@ EXERCISES = [
                        "the vector part has the wrong sign, the inverse rotation: seed 002 "
                        "takes r32 − r23, r13 − r31, r21 − r12 (row index first: r32 is "
                        "R[2, 1])"),
-          accept=lambda: [-_q_seed()], what="a quaternion [w, x, y, z]"),
+          accept=lambda: [-_q_seed()], what="a quaternion [w, x, y, z]",
+          explain="kinlib's quaternion is (ε4, ε1, ε2, ε3): only the scalar ε4 = cos θ/2 moves "
+                  "to the front. Seed 002's (ε1, ε2, ε3, ε4) typed in as written would be read "
+                  "as w = ε1, another rotation."),
     judged("06.4", "predict", "seed 000's checkpoints", _checkpoints_judge,
            diagnoses=(HALF_ANGLE.key, DEGREES.key, XYZW.key, CONJUGATE.key, "unit")),
     value("06.5", "compute", "120° about (1, 1, 1)/√3 by hand", _q_perm,
@@ -208,7 +216,10 @@ EXERCISES = [
           Mistake("unit axis", "the axis (1, 1, 1) is not a unit vector: divide it by √3, "
                                "or the quaternion is not a unit quaternion",
                   lambda: _by_hand(np.ones(3), np.deg2rad(120))),
-          accept=lambda: [-_q_perm()], what="a quaternion [w, x, y, z]"),
+          accept=lambda: [-_q_perm()], what="a quaternion [w, x, y, z]",
+          explain="cos 60° = ½ and sin 60°/√3 = ½: all four numbers are ½ (or all −½). This "
+                  "quaternion reads the same in [w, x, y, z] and [x, y, z, w], so it is a bad "
+                  "test case for a conversion."),
     value("06.6", "compute", "first q_perm, then 90° about world z", _then,
           ORDER.of(lambda: _mul(_q_perm(), _q_z90()),
                    "this is q_perm ⊗ q_z90: first 90° about z, then q_perm. Like R2 R1, the "
@@ -217,5 +228,7 @@ EXERCISES = [
                                 "turned by q_z90 (120° about another axis), not the two "
                                 "rotations one after the other: multiply, q_z90 ⊗ q_perm",
                   lambda: _mul(_mul(_q_z90(), _q_perm()), _conj(_q_z90()))),
-          accept=lambda: [-_then()], what="a quaternion [w, x, y, z]"),
+          accept=lambda: [-_then()], what="a quaternion [w, x, y, z]",
+          explain="q_z90 ⊗ q_perm: as with matrices, R2 R1, the rotation applied first stands "
+                  "on the right."),
 ]

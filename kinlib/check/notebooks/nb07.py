@@ -185,7 +185,9 @@ EXERCISES = [
           SIGN.of(lambda: -_slide(), "your axis points the other way: with θ in [0, π] "
                                      "the axis is the direction of (r32 − r23, r13 − r31, "
                                      "r21 − r12) (kl.axis_angle_from_matrix gives it)"),
-          what="a number"),
+          what="a number",
+          explain="d = l·t keeps only the part of the translation along the axis; the rest, "
+                  "t⊥, is absorbed by moving the axis off the origin."),
     choice("07.2", "predict", "the slide of a rotation about a line off the origin",
            {"a": "d = 0", "b": "d = |t| ≠ 0: the origin moves, so there is a translation",
             "c": "d grows with the distance of the line from the origin"},
@@ -210,7 +212,9 @@ EXERCISES = [
                                    "(the rotation q_r) first, then the dual part q_d",
                   lambda: np.r_[0.0, 0.5 * T_PURE, 1.0, 0, 0, 0]),
           accept=lambda: [-_dq_of(np.r_[1.0, 0, 0, 0], T_PURE)],
-          what="a dual quaternion (8 numbers)"),
+          what="a dual quaternion (8 numbers)",
+          explain="with q_r = 1 the dual part is ½ (0, t) = (0, 0.5, 1, 1.5): half the "
+                  "translation, which t = 2 q_d q̄_r doubles back."),
     function("07.4", "the dual quaternion [q_r, ½ (0, t) q_r] of a pose", CASES, _dq_of,
              ORDER.of(lambda q, t: np.r_[q, 0.5 * _mul(q, _pure(t))],
                       "½ q_r (0, t) is the other order: that pose turns first and then "
@@ -225,9 +229,14 @@ EXERCISES = [
              XYZW.of(lambda q, t: np.r_[q, 0.5 * _mul(np.r_[t, 0.0], q)],
                      "you built the pure quaternion as [t, 0], scalar last: (0, t) is "
                      "[0, t_x, t_y, t_z] in kinlib's [w, x, y, z]"),
-             accept=lambda q, t: [-_dq_of(q, t)], what="a dual quaternion (8 numbers)"),
+             accept=lambda q, t: [-_dq_of(q, t)], what="a dual quaternion (8 numbers)",
+             explain="(0, t) stands on the left of q_r because the pose turns first and then "
+                     "moves, p ↦ R p + t; q_r (0, t) would move by t in the turned frame, by R t."),
     judged("07.5", "derive", "cos of the dual half angle (θ + εd)/2", _dual_angle_judge(),
-           diagnoses=("chain rule", "derivative sign", HALF_ANGLE.key, "not expanded")),
+           diagnoses=("chain rule", "derivative sign", HALF_ANGLE.key, "not expanded"),
+           explain="cos(θ/2) − ε (d/2) sin(θ/2): the real part is the scalar of q_r, the ε part "
+                   "the scalar −(d/2) sin(θ/2) of q_d. The dual angle θ + εd carries the slide d "
+                   "next to the angle θ, as a derivative: f(a + εb) = f(a) + ε b f'(a)."),
     choice("07.6", "predict", "the path of the body origin under ScLERP",
            {"a": "a straight line from its start to its end position",
             "b": "a helix about the relative screw axis: it circles the axis and rises "

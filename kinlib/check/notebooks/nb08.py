@@ -101,7 +101,13 @@ EXERCISES = [
                            "the rotation block is transposed: that is the parent's axes in "
                            "the child frame, R(rpy)ᵀ; the columns of R are the child's axes "
                            "written in the parent"),
-             what="a 4×4 matrix"),
+             what="a 4×4 matrix",
+             explain="URDF's roll, pitch and yaw turn about the parent's fixed axes, so the "
+                     "first turn stands on the right: R = Rz(yaw) Ry(pitch) Rx(roll), which "
+                     "is `kl.matrix_from_euler(rpy, \"xyz\")` (lowercase: extrinsic). xyz is "
+                     "measured in the parent, so R does not turn it: T = D(xyz) R(rpy) = "
+                     "[R xyz; 0 0 0 1], translate first, then rotate about the new origin "
+                     "(the other order, R D, would put the origin at R·xyz)."),
     value("08.2", "compute", "T_link4 as the product on the stack",
           lambda: _stack("joint2", "joint3"),
           ORDER.of(lambda: _stack("joint2", "joint3", motion_first=True),
@@ -119,7 +125,12 @@ EXERCISES = [
                             "link4, so neither its origin nor its motion belongs in link4's "
                             "product; pop it off the stack before entering joint2",
                   lambda: _stack("joint1", "joint2", "joint3")),
-          what="a 4×4 matrix"),
+          what="a 4×4 matrix",
+          explain="with link4 on top the stack holds D^1_3 R^1_3 R_u2(q2) D^3_4 R^3_4 "
+                  "R_u3(q3) (times the base pose, here I): joint1 was popped before joint2 "
+                  "was entered, so q1 does not appear, and each joint puts its origin "
+                  "before its motion because its axis is written in the frame the origin "
+                  "reaches."),
     choice("08.3", "predict", "what accounts for a prismatic joint's motion",
            {"a": "a rotation R_u1(q1) about the unit axis u1, right after joint1's origin",
             "b": "a translation D_u1(q1) by q1·u1 along the unit axis, right after joint1's "
@@ -149,7 +160,11 @@ EXERCISES = [
           Mistake("base", "the base pose is missing: that is link2 in link1's frame; the "
                           "world pose starts from D^w_1 R^w_1 = base",
                   lambda: _robot().joint("joint1").origin @ _slide()),
-          what="a 4×4 matrix"),
+          what="a 4×4 matrix",
+          explain="T_link2 = base · D^1_2 R^1_2 · D_u1(q1): the slide by q1·u1 is along the "
+                  "axis written in joint1's frame, so the base's turn by 0.3 rad about z "
+                  "turns it too: in the world, link2 moved by 0.7 · Rz(0.3) u1 from where "
+                  "it stands at q1 = 0."),
     choice("08.5", "predict", "can a joint move infinitely far?",
            {"a": "yes, every joint: q is just a number in R_u(q) or D_u(q)",
             "b": "a continuous joint turns forever (q and q + 2π give the same pose); a "

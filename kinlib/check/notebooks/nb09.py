@@ -181,9 +181,18 @@ EXERCISES = [
              SWAPPED.of(_permuted((0, 2, 1, 3)), "d and a are swapped: return (θ, d, a, α)"),
              SWAPPED.of(_permuted((0, 3, 2, 1)), "you returned (θ, α, a, d), the column order of "
                                                  "seed 001's PUMA table: return (θ, d, a, α)"),
-             accept=_wrapped, what="an array (θ, d, a, α)"),
+             accept=_wrapped, what="an array (θ, d, a, α)",
+             explain="o_i = o_{i−1} + d z_{i−1} + a x_i with z_{i−1} ⟂ x_i (DH1), so the dot "
+                     "products pick out d and a; θ and α need atan2 of the cross product's "
+                     "component along the axis they turn about, and the dot product, for "
+                     "their sign."),
     judged("09.3", "derive", "the 3-DOF arm's tip position", _tip_judge(),
-           diagnoses=("modified", "sign", "order", "swapped", "transposed")),
+           diagnoses=("modified", "sign", "order", "swapped", "transposed"),
+           explain="the result reads like the arm: in its vertical plane the 2R arm reaches "
+                   "r = a_2 cos θ_2 + a_3 cos(θ_2 + θ_3) and rises to d_1 + a_2 sin θ_2 + "
+                   "a_3 sin(θ_2 + θ_3); the base turns that plane by θ_1, so x = r cos θ_1, "
+                   "y = r sin θ_1. α_1 = 90° is what stands the plane up: it turns z_1, the "
+                   "shoulder axis, into the horizontal."),
     value("09.4", "compute", "A_3 of the PUMA 560 at q_3 = 0.6 rad", _puma_row3,
           MODIFIED_DH.of(lambda: _puma_row3(modified=True),
                          "this is Craig's modified DH, mdh_transform = Rx(α) Tx(a) Rz(θ) "
@@ -206,7 +215,10 @@ EXERCISES = [
           SWAPPED.of(lambda: _puma_row3(theta=_row3().alpha, alpha=Q3),
                      "θ and α are swapped: kl.dh_transform takes (theta, d, a, alpha) in that "
                      "order; use the keywords"),
-          what="a 4×4 matrix"),
+          what="a 4×4 matrix",
+          explain="A_3 = Rz(0.6) Tx(−0.02032) Rx(π/2), with d_3 = 0: the table's θ_3 = 90° "
+                  "is only the pose the book draws, and its millimetres and degrees become "
+                  "metres and radians."),
     value("09.5", "compute", "the modified-DH table of the 3-DOF arm", _modified_table,
           Mistake("standard rows", "those are the standard rows: in Craig's table row i holds "
                                    "a_{i−1} and α_{i−1}, the length and twist of the link "
@@ -218,5 +230,8 @@ EXERCISES = [
                   lambda: np.vstack([[0.0, 0.0, 0.0], np.array(_standard())])),
           DEGREES.of(lambda: _modified_table() * [1.0, 180.0 / np.pi, 1.0],
                      "α_0 … α_3 must be in radians: α_1 = π/2, not 90"),
-          what="a 4×3 array"),
+          what="a 4×3 array",
+          explain="a and α moved one row down, d stayed: row 1 is (a_0, α_0, d_1) = "
+                  "(0, 0, 0.4), row 2 (a_1, α_1, 0) = (0, π/2, 0), row 3 (a_2, 0, 0) = "
+                  "(0.5, 0, 0), and the fixed tool row carries (a_3, α_3) = (0.4, 0)."),
 ]

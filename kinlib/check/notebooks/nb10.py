@@ -11,12 +11,15 @@ from ._make import choice, judged, value
 # --- 10.1 · c2 from the law of cosines ------------------------------------------------------
 
 
-def _c2(factor):
+def _c2(factor, precedence=False):
+    """c2 times ``factor``; with ``precedence``, typed as ``(...) / 2 * l1 * l2``."""
     def model():
         import sympy as sp
 
         x, y = sp.symbols("x y", real=True)
         l1, l2 = sp.symbols("l_1 l_2", positive=True)
+        if precedence:
+            return factor * (x**2 + y**2 - l1**2 - l2**2) / 2 * l1 * l2
         return factor * (x**2 + y**2 - l1**2 - l2**2) / (2 * l1 * l2)
     return model
 
@@ -29,7 +32,10 @@ def _c2_judge():
              "The forward kinematics gives x² + y² = l1² + l2² + 2 l1 l2 c2, with a plus, "
              "because θ2 is measured from link 1, not inside the triangle"),
             ("factor 2", expression_judge(_c2(2), what=what, swaps=()),
-             "the 2 of 2 l1 l2 c2 is missing: divide by 2 l1 l2")]
+             "the 2 of 2 l1 l2 c2 is missing: divide by 2 l1 l2"),
+            ("precedence", expression_judge(_c2(1, precedence=True), what=what, swaps=()),
+             "`/ 2 * L1 * L2` divides by 2 and then multiplies by l1 l2: write "
+             "`/ (2 * L1 * L2)`")]
 
     def judge(args, got):
         if isinstance(got, list | tuple) and len(got) == 1:
@@ -173,10 +179,16 @@ def _base_option() -> str:
 
 EXERCISES = [
     judged("10.1", "derive", "c2 from the law of cosines", _c2_judge(),
-           diagnoses=("sign", "factor 2")),
+           diagnoses=("sign", "factor 2", "precedence"),
+           explain="c2 = (x² + y² − l1² − l2²) / (2 l1 l2): the law of cosines solved for "
+                   "the cosine of θ2. A real θ2 needs −1 ≤ c2 ≤ 1, which is the condition for "
+                   "the target to be reachable (section 4)"),
     judged("10.2", "implement", 'seed 001\'s 2R inverse kinematics, elbow "down"', _ik_judge,
            cases=_ik_cases(),
-           diagnoses=("other elbow", "acos", "atan", "beta sign", "swapped", "degrees")),
+           diagnoses=("other elbow", "acos", "atan", "beta sign", "swapped", "degrees"),
+           explain='for elbow "up" change one sign only, s2 = −√(1 − c2²): θ2 and β change '
+                   "sign with it. kinlib's `planar_2r_ik(x, y, l1, l2, elbow=\"down\")` is "
+                   "this function, for arrays of targets too"),
     value("10.3", "predict", "how many solutions on the outer circle, inside, outside", _counts,
           Mistake("boundary", "on the outer circle c2 = 1 and s2 = 0: the two elbows "
                               "coincide (the arm stretched straight, θ2 = 0), one solution",
@@ -189,12 +201,16 @@ EXERCISES = [
           Mistake("closest", "outside the annulus there is no solution: kinlib returns the "
                              "closest configuration, but with reachable=False — it does not "
                              "reach the target", lambda: [1, 2, 1]),
-          what="three numbers"),
+          what="three numbers",
+          explain="inside the annulus |c2| < 1 gives two values of s2, two elbows; on a circle "
+                  "s2 = 0 and they coincide; outside no θ2 exists"),
     choice("10.4", "predict", "equal links, the target at the base", _BASE, _base_option(),
            {"a": ("excluded", "with l1 = l2 the inner circle has radius |l1 − l2| = 0: the "
                               "base is in the workspace, reached with the arm folded"),
             "b": ("theta1 free", "folded, θ2 = π, yes — but then the tip is at the base "
                                  "whatever θ1 is: θ1 is free"),
             "c": ("theta1 free", "θ2 = π and θ2 = −π are the same fold, and for it θ1 is "
-                                 "free: every θ1 puts the tip at the base")}),
+                                 "free: every θ1 puts the tip at the base")},
+           explain="folded (θ2 = π) with l1 = l2 the tip sits on the base whatever θ1 is: a "
+                   "whole circle of solutions (the formula for θ1 meets atan2(0, 0) twice)"),
 ]

@@ -82,9 +82,15 @@ _SMOOTH = {"a": "both", "b": "the warm-started one", "c": "the cold one", "d": "
 
 EXERCISES = [
     judged("11.1", "implement", "the pose error [p_t − p; log(R_t Rᵀ)^∨]", _pose_judge(),
-           cases=_pose_cases(), diagnoses=("sign", "rotation sign", "frame", "rows", "sin")),
+           cases=_pose_cases(), diagnoses=("sign", "rotation sign", "frame", "rows", "sin"),
+           explain="e = 0 exactly when T = T_target, and at θ = π both ±k are right (the same "
+                   "rotation). kinlib's `kl.pose_error(T, T_target)` is this function, for "
+                   "batches of poses too; the rest of the notebook uses it"),
     judged("11.2", "implement", "one damped least-squares step", _dls_judge, cases=_dls_cases(),
-           diagnoses=("lambda", "sign", "undamped", "inverse", "transpose")),
+           diagnoses=("lambda", "sign", "undamped", "inverse", "transpose"),
+           explain="with λ = 0 and a square, invertible J this is Newton's step J⁻¹ e; a λ > 0 "
+                   "keeps it short where J is nearly singular. kinlib's "
+                   "`kl.dls_step(J, e, damping)` is this function, with damping = λ"),
     choice("11.3", "predict", "the most solutions the PUMA 560 has for one pose", _SOLUTIONS,
            _most(),
            {"a": ("elbow only", "the elbow up or down, as for the 2R arm, yes — but the PUMA "
@@ -100,7 +106,9 @@ EXERCISES = [
             "e": ("finite", "six joints for the six numbers of a pose (3 for the position, 3 "
                             "for the orientation) leave no freedom: a general pose has "
                             "isolated solutions. Whole families appear only at singular poses "
-                            "or for a redundant arm, with seven joints or more")}),
+                            "or for a redundant arm, with seven joints or more")},
+           explain="2 shoulders × 2 elbows place the wrist centre, and the spherical wrist "
+                   "gives the orientation in 2 ways (its flip): 8"),
     choice("11.4", "predict", "warm or cold starts along a straight line", _SMOOTH, "b",
            {"a": ("branches", "close poses have close solutions on each of the up to eight "
                               "branches, but a solve started far away picks its branch by "
@@ -111,5 +119,7 @@ EXERCISES = [
                                    "chooses the branch — the one of the previous sample"),
             "d": ("continuous", "away from singularities each solution changes continuously "
                                 "with the pose (J is invertible there: a small change of pose "
-                                "needs only a small change Δq = J⁻¹ e)")}),
+                                "needs only a small change Δq = J⁻¹ e)")},
+           explain="a warm start stays on the branch of the previous sample, and each branch "
+                   "changes continuously with the pose away from singularities"),
 ]

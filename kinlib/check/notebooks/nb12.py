@@ -7,12 +7,12 @@ import numpy as np
 from .._symbolic import expression_judge
 from .._verdict import Mistake, Verdict
 from ..judges import choice_judge
-from ..mistakes import DEGREES, FRAME, ROWS, SIGN, TRANSPOSED
+from ..mistakes import DEGREES, FRAME, ORDER, ROWS, SIGN, TRANSPOSED
 from ._make import function, judged, value
 
 
-# -- 12.1 · ω of the pan–tilt head R(t) = Rz(α(t)) Rx(γ(t)) ---------------------------------
-def _pan_tilt_symbols():
+# -- 12.1 · ω of the tilting turntable R(t) = Rx(γ(t)) Rz(α(t)) ----------------------------
+def _table_symbols():
     import sympy as sp
 
     al, ga = sp.symbols("alpha gamma", real=True)
@@ -21,37 +21,66 @@ def _pan_tilt_symbols():
 
 
 def _omega_space():
-    """ω = E(α, 0, γ) (α̇, 0, γ̇) with kinlib's ZYX Euler-rate matrix (β = 0)."""
+    """ω = E(γ, α, 0) (γ̇, α̇, 0) with kinlib's XZY Euler-rate matrix: R = Rx(γ) Rz(α) Ry(0)."""
     import sympy as sp
 
     from ... import euler_rate_matrix
 
-    al, ga, ad, gd = _pan_tilt_symbols()
-    return euler_rate_matrix([al, 0, ga], "ZYX") * sp.Matrix([ad, 0, gd])
+    al, ga, ad, gd = _table_symbols()
+    return euler_rate_matrix([ga, al, 0], "XZY") * sp.Matrix([gd, ad, 0])
 
 
 def _omega_body():
-    """The body-frame angular velocity Rᵀω, R = Rz(α) Rx(γ): what vee(RᵀṘ) gives."""
+    """The body-frame angular velocity Rᵀω, R = Rx(γ) Rz(α): what vee(RᵀṘ) gives."""
     from ... import rotx, rotz
     from ...symbolic import simplify_rotation
 
-    al, ga, _, _ = _pan_tilt_symbols()
-    return simplify_rotation((rotz(al) * rotx(ga)).T * _omega_space())
+    al, ga, _, _ = _table_symbols()
+    return simplify_rotation((rotx(ga) * rotz(al)).T * _omega_space())
+
+
+def _omega_other_order():
+    """ω of Rz(α) Rx(γ), the product in the other order (a turn about the fixed z, then a
+    tilt about the moving x)."""
+    import sympy as sp
+
+    from ... import euler_rate_matrix
+
+    al, ga, ad, gd = _table_symbols()
+    return euler_rate_matrix([al, 0, ga], "ZYX") * sp.Matrix([ad, 0, gd])
+
+
+def _omega_unturned():
+    """γ̇ x + α̇ z: the two rates added about the axes as they stand at rest."""
+    import sympy as sp
+
+    _, _, ad, gd = _table_symbols()
+    return sp.Matrix([gd, 0, ad])
 
 
 _OMEGA_WHAT = "a 3×1 sympy Matrix"
 _omega_right = expression_judge(_omega_space, what=_OMEGA_WHAT)
-_omega_in_body = expression_judge(_omega_body, what=_OMEGA_WHAT)
 _OMEGA_SIGN = ("right up to the sign: R Ṙᵀ = (Ṙ Rᵀ)ᵀ = −S(ω); the angular velocity is the "
                "vector of Ṙ Rᵀ, the derivative first")
-_OMEGA_FRAME = ("this is the body angular velocity Rᵀω, the vector of Rᵀ Ṙ, expressed in the "
-                "head's own frame (its first entry is the tilt rate about the head's x axis): "
-                "the fixed-frame ω is the vector of Ṙ Rᵀ")
+_OMEGA_NEAR_MISSES = (  # tried in order; each is judged like the right answer
+    (expression_judge(_omega_body, what=_OMEGA_WHAT), FRAME.key,
+     "this is the body angular velocity Rᵀω, the vector of Rᵀ Ṙ, expressed in the table's "
+     "own frame (its last entry is the turn rate about the table's z axis): the fixed-frame "
+     "ω is the vector of Ṙ Rᵀ"),
+    (expression_judge(_omega_other_order, what=_OMEGA_WHAT), ORDER.key,
+     "this is the angular velocity of R_z(α) R_x(γ), the product in the other order: the "
+     "table tilts about the fixed x axis and turns about its own z axis, R = R_x(γ) R_z(α) "
+     "(the rotation about the moving axis stands on the right)"),
+    (expression_judge(_omega_unturned, what=_OMEGA_WHAT), "axis",
+     "you added γ̇ x + α̇ z, both axes as they stand at rest: the table's z axis tilts with "
+     "γ, so α̇ turns about R_x(γ) z (section 3: add angular velocities only once they are "
+     "expressed in one frame)"),
+)
 
 
 def _tidied(got):
-    """A sympy answer with its trigonometry simplified: an unsimplified ṘRᵀ still holds γ,
-    which cancels (sin²γ + cos²γ = 1); the judge would take it for a foreign symbol."""
+    """A sympy answer with its trigonometry simplified: an unsimplified ṘRᵀ still holds α,
+    which cancels (sin²α + cos²α = 1); the judge would take it for a foreign symbol."""
     import sympy as sp
 
     from ...symbolic import simplify_rotation
@@ -70,8 +99,9 @@ def _judge_omega(args, got):
     v = _omega_right(args, got)
     if v.ok or v.key in ("type", "shape", "transposed"):
         return v
-    if _omega_in_body(args, got).ok:  # (it has γ, which ω does not: test before "symbols")
-        return Verdict(False, FRAME.key, _OMEGA_FRAME, v.expected)
+    for judge, key, message in _OMEGA_NEAR_MISSES:  # (before "symbols": they hold α)
+        if judge(args, got).ok:
+            return Verdict(False, key, message, v.expected)
     if v.key == SIGN.key:
         return Verdict(False, SIGN.key, _OMEGA_SIGN, v.expected)
     return v
@@ -135,8 +165,12 @@ def _judge_scara(args, got):
 
 
 EXERCISES = [
-    judged("12.1", "derive", "ω of the pan–tilt head from Ṙ Rᵀ", _judge_omega,
-           diagnoses=(FRAME.key, SIGN.key)),
+    judged("12.1", "derive", "ω of the tilting turntable from Ṙ Rᵀ", _judge_omega,
+           diagnoses=(FRAME.key, ORDER.key, "axis", SIGN.key),
+           explain="ω = γ̇ x + α̇ R_x(γ) z = (γ̇, −α̇ sin γ, α̇ cos γ): the tilt rate about "
+                   "the fixed x axis plus the turn rate about the table's own axis, as the "
+                   "tilt has turned it. Section 3 makes a rule of this: angular velocities "
+                   "add once they are expressed in one frame"),
     value("12.2", "compute", "the wheel on the turntable: ω in the base frame",
           lambda: W01 + _R01() @ W12,
           FRAME.of(lambda: W01 + W12, "you added ω¹₁,₂ as it is, but it is expressed in the "
@@ -147,7 +181,10 @@ EXERCISES = [
                         "the turntable's: R⁰₁ takes the wheel's rate from frame 1 to frame 0"),
           DEGREES.of(lambda: W01 + _R01(90.0) @ W12,
                      "kl.rotz(90) turns by 90 radians: kinlib's angles are radians, π/2 is "
-                     "90°"), what="a 3-vector"),
+                     "90°"), what="a 3-vector",
+          explain="ω⁰₀,₂ = ω⁰₀,₁ + R⁰₁ ω¹₁,₂ = (0, 0, 2) + R_z(π/2) (5, 0, 0) = (0, 5, 2) "
+                  "rad/s: at this instant the turntable's x axis points along the base y "
+                  "axis, and that is where the wheel's 5 rad/s point"),
     function("12.3", "a revolute joint's column [z × (o_n − o); z]", _column_cases(), _columns,
              ROWS.of(lambda z, o, o_n: np.roll(_columns(z, o, o_n), 3),
                      "your column is [z; z × (o_n − o)], rows [ω; v]: the course's Jacobian "
@@ -162,7 +199,12 @@ EXERCISES = [
                                   "to the tip is o_n − o",
                      lambda z, o, o_n: _columns(z, o, o_n, linear=lambda a, on, oi: np.cross(
                          a, on))),
-             what="a 6-vector [v; ω]"),
+             what="a 6-vector [v; ω]",
+             explain="the tip, at r = o_n − o from a point of the axis, turns about the axis "
+                     "at unit rate: v = z × r, and ω = z. Only the part of r perpendicular to "
+                     "the axis counts, so any point o on the axis gives the same column"),
     judged("12.4", "predict", "the SCARA's prismatic column", _judge_scara,
-           diagnoses=(SIGN.key, "prismatic")),
+           diagnoses=(SIGN.key, "prismatic"),
+           explain="a slide moves the tip along its axis and turns nothing, [z₂; 0]; and "
+                   "α₂ = π has turned z₂ over, so it points down"),
 ]

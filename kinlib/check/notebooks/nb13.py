@@ -53,13 +53,13 @@ def _judge_det(args, got):
 # -- 13.2 · the lost direction at θ2 = 0 -----------------------------------------------------
 LOST_OPTIONS = {"a": "along the arm: towards the base or away from it",
                 "b": "across the arm, perpendicular to it",
-                "c": "none: two joints still make every planar velocity"}
+                "c": "none: two joints still make every planar velocity, only more slowly"}
 _LOST_WRONG = {
     "b": ("across", "across the arm is the one direction the tip can still move in: each "
                     "joint swings the tip on a circle about itself, and at θ2 = 0 both centres "
                     "lie on the arm's line, so both columns of J point across the arm"),
-    "c": ("rank", "at θ2 = 0, det J = l1 l2 sin θ2 = 0: the two columns are parallel and J q̇ "
-                  "covers only one line of tip velocities, however fast the joints turn")}
+    "c": ("rank", "at θ2 = 0, det J = 0: the two columns are parallel and J q̇ covers only "
+                  "one line of tip velocities, however fast the joints turn")}
 
 
 @cache
@@ -103,9 +103,15 @@ def _w_with_phi_row():
 
 EXERCISES = [
     judged("13.1", "derive", "det J of the planar 2R arm", _judge_det,
-           diagnoses=(SIGN.key, SWAPPED.key)),
+           diagnoses=(SIGN.key, SWAPPED.key),
+           explain="det J = l1 l2 sin θ2 (seed 001 gets there through c1 s12 − s1 c12 = "
+                   "sin θ2). It does not depend on θ1, and it vanishes exactly at θ2 = 0 and "
+                   "θ2 = π: the arm stretched out or folded back"),
     judged("13.2", "predict", "the tip direction lost at θ2 = 0", _judge_lost,
-           diagnoses=("across", "rank")),
+           diagnoses=("across", "rank"),
+           explain="each joint swings the tip on a circle about itself, and at θ2 = 0 both "
+                   "centres lie on the arm's line: both columns of J point across the arm, "
+                   "and no joint velocity moves the tip along it"),
     value("13.3", "compute", "joint velocities for the tip velocity (−1, 0) at θ = (0, π/2)",
           _qdot,
           TRANSPOSED.of(lambda: _J(*Q_TIP).T @ V_TIP,
@@ -119,7 +125,10 @@ EXERCISES = [
                              "solving with v = (−1, 0, 0) also asks for φ̇ = 0, which the arm "
                              "cannot do at the same time. Use the two position rows, [:2]",
                   lambda: np.linalg.lstsq(_J(*Q_TIP, rows=3), [*V_TIP, 0.0], rcond=None)[0]),
-          what="a 2-vector (θ̇1, θ̇2)"),
+          what="a 2-vector (θ̇1, θ̇2)",
+          explain="J(0, π/2) = [[−l2, −l2], [l1, 0]]: its second row gives θ̇1 = 0, the first "
+                  "then θ̇2 = 1/l2 = 1.25 rad/s. Only the elbow turns: the forearm points "
+                  "straight up, and turning it swings the tip to the left"),
     value("13.4", "compute", "the manipulability w at θ = (0.3, π/2)", _w,
           Mistake("squared", "that is w² = det(J Jᵀ): the manipulability is its square root, "
                              "w = √det(J Jᵀ) = σ1 σ2", lambda: _w() ** 2),
@@ -131,5 +140,8 @@ EXERCISES = [
                   lambda: 0.0),
           DEGREES.of(lambda: _w((0.3, 90.0)), "you put in θ2 = 90, in degrees: kinlib's "
                                              "angles are radians, θ2 = π/2"),
-          what="a number"),
+          what="a number",
+          explain="w = l1 l2 = 0.8, the largest w the arm has: for a square J, w = |det J| "
+                  "= l1 l2 |sin θ2|, largest when the links are perpendicular. The ellipse is "
+                  "fattest there and thins as the arm stretches out or folds back"),
 ]

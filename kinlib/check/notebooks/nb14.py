@@ -148,7 +148,11 @@ EXERCISES = [
                                   "the disc depends on both angles")}),
     judged("14.2", "derive", "the metric J'ᵀJ' in absolute link angles", _g_abs_judge(),
            diagnoses=("swapped", "seed typo", "angle sum", "doubled", "symmetric",
-                      "cross term", "coordinates")),
+                      "cross term", "coordinates"),
+           explain="G' = [[l1², l1 l2 cos(φ1 − φ2)], [l1 l2 cos(φ1 − φ2), l2²]]: again one "
+                   "angle only, the angle between the two links (φ2 − φ1 = θ2). The end's "
+                   "velocity is the sum of l1 δφ1 and l2 δφ2, each perpendicular to its link; "
+                   "the off-diagonal entries are their dot product"),
     value("14.3", "compute", "how far the end moves for δθ = (0.01, −0.01) at θ = (0.4, π/2)",
           _ee_step,
           Mistake("joint metric", "that is the joint-space length √(δθ1² + δθ2²) of the step, "
@@ -166,7 +170,10 @@ EXERCISES = [
           Mistake("step sign", "you used δθ2 = +0.01: the step is (0.01, −0.01), link 2 turns "
                                "back at the elbow by as much as link 1 turns forward",
                   lambda: _ee_step((DTHETA_STEP[0], -DTHETA_STEP[1]))),
-          what="a number (metres)"),
+          what="a number (metres)",
+          explain="l1·δθ1 = 0.01 m: link 2 keeps its direction (δφ2 = δθ1 + δθ2 = 0), so it "
+                  "only translates with the elbow, which moves l1·δθ1. With G' and "
+                  "δφ = (0.01, 0): Δs² = l1² δφ1²"),
     choice("14.4", "predict", "which optimal path bends the elbow further",
            {"a": "the joint-metric path", "b": "the end-effector-metric path",
             "c": "neither: both metrics find the same path"}, "b",
@@ -199,5 +206,8 @@ EXERCISES = [
           Mistake("unwrapped", "|3.0 − (−3.0)| = 6 rad is the long way round through θ1 = 0, "
                                "and off the grid; the short way crosses θ1 = ±π",
                   lambda: abs(FROM[0] - TO[0])),
-          what="a number (radians)"),
+          what="a number (radians)",
+          explain="θ1 = 3.0 lies in cell ⌊(3.0 + π)/h⌋ = 93 and θ1 = −3.0 in cell 2; the "
+                  "short way crosses the seam, 93 → 94 → 95 → 0 → 1 → 2: five moves of "
+                  "h = 2π/96 each, 5h ≈ 0.327 rad"),
 ]
