@@ -144,15 +144,19 @@ SLOTS = [
     ("point_velocity", "p_local", (3,), lambda x: kl.point_velocity(R_OK, V_OK, V_OK, x)),
     ("euler_rate_matrix", "angles", (3,), lambda x: kl.euler_rate_matrix(x, "ZYX")),
     ("euler_rates_singular", "angles", (3,), lambda x: kl.euler_rates_singular(x, "ZYX")),
+    ("pose_error", "T", (4, 4), lambda x: kl.pose_error(x, T_OK)),
+    ("pose_error", "T_target", (4, 4), lambda x: kl.pose_error(T_OK, x)),
 ]
 # Public callables whose input is not an array: tested in their own modules
 # (load_urdf: tests/test_urdf_errors.py; Robot methods: tests/test_robot.py).
 # (planar_2r_cspace, astar, cost_to_go: tests/test_planning.py).
-# add_angular_velocities takes stacks (..., n, 3, 3) and the singularity tools any (..., m, n)
-# matrix: their bad input is tested in tests/test_velocity.py and tests/test_singularity.py.
+# add_angular_velocities takes stacks (..., n, 3, 3) and the singularity tools and dls_step
+# any (..., m, n) matrix: their bad input is tested in tests/test_velocity.py,
+# tests/test_singularity.py and tests/test_ik.py.
 NOT_ARRAY_FUNCTIONS = {"load_urdf", "add_angular_velocities", "singular_values",
                        "manipulability", "condition_number", "velocity_ellipsoid",
-                       "is_near_singular", "planar_2r_cspace", "astar", "cost_to_go"}
+                       "is_near_singular", "planar_2r_cspace", "astar", "cost_to_go",
+                       "dls_step"}
 
 # None means "the default" here
 NONE_OK = {("transform", "R"), ("transform", "p")}
