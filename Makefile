@@ -37,8 +37,12 @@ release: $(STAMP)
 lint: $(STAMP)
 	$(BIN)/ruff check .
 
+# Two workers (pytest-xdist); a file's tests stay together in one worker (a notebook's cells
+# share its kernel, the JupyterLab suite its server).
+WORKERS ?= 2
+
 test: lint
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(WORKERS) --dist loadfile --no-loadscope-reorder
 
 site: $(STAMP)
 	$(BIN)/python -m kinlib.site --out site --jobs 2

@@ -18,14 +18,18 @@ checked, once each, in order.
 
 The course site the browser tests read (``tests/test_site.py``) is built in the background
 from ``pytest_collection_finish`` when a collected test asks for it: ``python -m kinlib.site``
-runs on the second core while the other tests run (one notebook at a time), and the
-``site`` fixture (here) waits for it. ``pytest_unconfigure`` stops it if it is still running.
+runs (one notebook at a time) while the other tests run, and the ``site`` fixture (here)
+waits for it. Under pytest-xdist (``make test`` runs two workers) the build is shared: the
+controller makes its folder (``$KINLIB_TEST_SITE``), the first worker to collect starts it,
+and whichever worker runs the site's tests waits for its exit code there.
+``pytest_unconfigure`` stops it if it is still running.
 """
 
 from __future__ import annotations
 
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -66,10 +70,29 @@ def _hypothesis_profile() -> None:
     settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "kinlib"))
 
 
+SITE_ENV = "KINLIB_TEST_SITE"  # the session's site-build folder, shared with xdist workers
+#: run by the build's own process: the site, its log, and its exit code in a file when done
+SITE_BUILD = """import subprocess, sys
+folder, jobs = sys.argv[1], sys.argv[2]
+with open(folder + "/build.log", "wb") as log:
+    rc = subprocess.call([sys.executable, "-m", "kinlib.site", "--out", folder + "/site",
+                          "--jobs", jobs], stdout=log, stderr=subprocess.STDOUT)
+with open(folder + "/rc.tmp", "w") as fh:
+    fh.write(str(rc))
+import os
+os.replace(folder + "/rc.tmp", folder + "/rc")
+"""
+
+
 def pytest_configure(config):
     _hypothesis_profile()
-    if os.environ.get(ZMQ_ENV) or hasattr(config, "workerinput"):
-        return  # a server is given (or an xdist worker: the controller started it)
+    if hasattr(config, "workerinput"):
+        return  # an xdist worker: the controller started the server and made the folder
+    if not os.environ.get(SITE_ENV):
+        _state["site_folder"] = tempfile.mkdtemp(prefix="kinlib-site-")
+        os.environ[SITE_ENV] = _state["site_folder"]
+    if os.environ.get(ZMQ_ENV):
+        return  # a server is given
     server = _start_server()
     _state.update(server=server,
                   saved={k: os.environ.get(k) for k in (ZMQ_ENV, WEB_ENV, PID_ENV)})
@@ -78,22 +101,32 @@ def pytest_configure(config):
     os.environ[PID_ENV] = str(server.pid)
 
 
-def _start_site_build(jobs: int) -> dict:
-    """``python -m kinlib.site`` into a temporary folder, in the background (it dies with
-    pytest); its log is the folder's build.log."""
-    folder = tempfile.mkdtemp(prefix="kinlib-site-")
-    with open(os.path.join(folder, "build.log"), "wb") as log:
-        proc = subprocess.Popen([sys.executable, "-m", "kinlib.site", "--out",
-                                 os.path.join(folder, "site"), "--jobs", str(jobs)],
-                                stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                start_new_session=True, cwd=os.path.dirname(__file__),
-                                preexec_fn=_die_with(os.getpid()))
-    _state["site_build"] = {"proc": proc, "folder": folder}
-    return _state["site_build"]
+def _start_site_build(jobs: int) -> None:
+    """``python -m kinlib.site`` into the session's folder, in the background, once per
+    session whichever process asks first (it dies with that process); when it ends, the
+    folder holds ``build.log`` and ``rc``."""
+    folder = os.environ[SITE_ENV]
+    try:
+        os.close(os.open(os.path.join(folder, "started"), os.O_CREAT | os.O_EXCL))
+    except FileExistsError:
+        return  # another process of the session started it
+    proc = subprocess.Popen([sys.executable, "-c", SITE_BUILD, folder, str(jobs)],
+                            stdin=subprocess.DEVNULL, start_new_session=True,
+                            cwd=os.path.dirname(__file__), preexec_fn=_die_with(os.getpid()))
+    _state["site_build"] = proc
+
+
+#: the longest file of the suite runs first, so that under two workers the rest of the suite
+#: runs beside it instead of after it
+FIRST = ("tests/test_lab.py",)
+
+
+def pytest_collection_modifyitems(config, items):
+    items.sort(key=lambda item: item.nodeid.split("::")[0] not in FIRST)  # stable
 
 
 def pytest_collection_finish(session):
-    if hasattr(session.config, "workerinput") or session.config.option.collectonly:
+    if session.config.option.collectonly:
         return
     if any("site" in getattr(item, "fixturenames", ()) for item in session.items):
         _start_site_build(jobs=1)  # one notebook at a time: the tests run on the other core
@@ -101,20 +134,20 @@ def pytest_collection_finish(session):
 
 @pytest.fixture(scope="session")
 def site():
-    """The course site (a folder), from the build started when the session was collected,
-    or (when none was, e.g. in an xdist worker) from one started now. Fails with the build's
-    log if the build failed."""
-    build = _state.get("site_build") or _start_site_build(jobs=2)
-    waited = time.monotonic()
-    try:
-        build["proc"].wait(timeout=600)
-    except subprocess.TimeoutExpired:
-        pytest.fail("the site build did not finish in 600 s")
-    with open(os.path.join(build["folder"], "build.log"), errors="replace") as fh:
-        log = fh.read()
-    assert build["proc"].returncode == 0, f"the site build failed:\n{log[-4000:]}"
+    """The course site (a folder), from the build started when the session was collected
+    (by this process or another worker of the session), or from one started now. Fails
+    with the build's log if the build failed."""
+    _start_site_build(jobs=2)  # does nothing if the build was started
+    folder = Path(os.environ[SITE_ENV])
+    waited, deadline = time.monotonic(), time.monotonic() + 600
+    while not (folder / "rc").exists():
+        if time.monotonic() > deadline:
+            pytest.fail("the site build did not finish in 600 s")
+        time.sleep(0.5)
+    log = (folder / "build.log").read_text(errors="replace")
+    assert (folder / "rc").read_text() == "0", f"the site build failed:\n{log[-4000:]}"
     print(f"site build: {log.strip().splitlines()[-1]} (waited {time.monotonic() - waited:.1f} s)")
-    return Path(build["folder"]) / "site"
+    return folder / "site"
 
 
 def _code_cells(path: Path) -> int:
@@ -152,11 +185,13 @@ def _judge_instructor_cell(item) -> None:
 
 def pytest_unconfigure(config):
     build = _state.pop("site_build", None)
-    if build is not None:
-        if build["proc"].poll() is None:
-            build["proc"].kill()
-            build["proc"].wait()
-        shutil.rmtree(build["folder"], ignore_errors=True)
+    if build is not None and build.poll() is None:
+        os.killpg(build.pid, signal.SIGKILL)  # the wrapper and the build under it
+        build.wait()
+    folder = _state.pop("site_folder", None)
+    if folder is not None:
+        shutil.rmtree(folder, ignore_errors=True)
+        os.environ.pop(SITE_ENV, None)
     server = _state.pop("server", None)
     if server is None:
         return

@@ -27,6 +27,8 @@ import html
 import json
 import os
 import re
+import secrets
+import time
 from pathlib import Path
 
 import pytest
@@ -39,6 +41,7 @@ from browser_helpers import (
     joint_axis_mask,
     wait_for_mask,
 )
+from lab_harness import MARK, marked_processes
 
 from kinlib.site import MARKER, outline
 
@@ -238,27 +241,24 @@ def check_snapshot(frame_el, name: str, out: Path) -> None:
 
 # --- the site's snapshot against a live export (moved here: it reads the site) ---
 
-def meshcat_servers() -> set[int]:
-    found = set()
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/cmdline", "rb") as fh:
-                    if b"meshcat.servers.zmqserver" in fh.read():
-                        found.add(int(entry))
-            except OSError:
-                continue
-    return found
-
-
-def export_live(name: str) -> str:
+def export_live(name: str, marker: str) -> str:
     """Execute notebook ``name`` in its own kernel with live scenes (its own meshcat server,
-    as in class) and export it to HTML with nbconvert's default template."""
+    as in class) and export it to HTML with nbconvert's default template. The kernel and
+    what it starts carry ``marker`` in their environment (``lab_harness.marked_processes``
+    finds them, and only them, whatever else runs beside this test)."""
     from nbconvert import HTMLExporter
 
     from kinlib.site import execute_notebook
 
-    nb = execute_notebook(NOTEBOOKS / f"{name}.ipynb", timeout=120, static=False)
+    saved = os.environ.get(MARK)
+    os.environ[MARK] = marker
+    try:
+        nb = execute_notebook(NOTEBOOKS / f"{name}.ipynb", timeout=120, static=False)
+    finally:
+        if saved is None:
+            os.environ.pop(MARK)
+        else:
+            os.environ[MARK] = saved
     body, _ = HTMLExporter().from_notebook_node(nb)
     return body
 
@@ -292,9 +292,12 @@ def test_exported_notebook_shows_its_scene_without_a_server(browser, site, tmp_p
     """The site's page of notebook 08 (executed with ``KINLIB_STATIC_SCENES=1``) draws the
     robot with all http blocked; the control, notebook 08 executed and exported live in its
     own kernel, shows nothing once that kernel (and its meshcat server) is gone."""
-    before = meshcat_servers()
-    live = export_live("08_urdf_and_matrix_stack")
-    assert meshcat_servers() <= before, "a notebook left its meshcat server running"
+    marker = secrets.token_hex(8)
+    live = export_live("08_urdf_and_matrix_stack", marker)
+    deadline = time.monotonic() + 30  # the kernel's server ends as the kernel does
+    while (left := marked_processes(marker)) and time.monotonic() < deadline:
+        time.sleep(0.25)
+    assert not left, f"the live export left processes running (its meshcat server?): {left}"
     static = (site / "08_urdf_and_matrix_stack.html").read_text(encoding="utf-8")
     assert static.count('class="kinlib-scene"') >= 1 and 'class="kinlib-scene"' not in live
     (tmp_path / "live.html").write_text(live, encoding="utf-8")

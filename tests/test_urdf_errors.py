@@ -517,8 +517,9 @@ def _shape(kind: str, n: int) -> str:
 
 def _measure(small: str, large: str, target: str = "load_urdf") -> dict:
     """Load ``small`` and ``large`` in a child process: the ratios large/small of the calls
-    made and of the CPU time used, and the peak memory of loading ``large``. The timeout is
-    a watchdog for a hang, not a speed bound (the loads take about a second)."""
+    made and of the CPU time used (the least of three), and the peak memory of loading
+    ``large``. The timeout is a watchdog for a hang, not a speed bound (the loads take
+    about a second)."""
     job = json.dumps({"target": target, "small": small, "large": large})
     try:
         proc = subprocess.run([sys.executable, "-c", CHILD], input=job, text=True,
@@ -539,8 +540,10 @@ def test_pathological_shapes_load(kind, n):
     assert len(robot.link_names) == n + 1
 
 
-#: twice the size: linear work doubles, quadratic work quadruples
-LINEAR = {"calls": (1.8, 2.3), "cpu": (1.0, 3.0)}
+#: eight times the size: linear work grows 8×, quadratic work 64× (the CPU time of one
+#: process is still disturbed by busy neighbours, by up to about 2×: hence its wide band)
+FACTOR = 8
+LINEAR = {"calls": (7.2, 9.0), "cpu": (2.0, 24.0)}
 
 
 def _linear(m: dict) -> bool:
@@ -550,14 +553,14 @@ def _linear(m: dict) -> bool:
 @pytest.mark.parametrize("kind, n", [
     # these were quadratic/cubic once (leaf search, stored root paths, mimic chains), seen
     # at 16,000, 12,000 and 3,000 joints
-    ("star", 6_000),
-    ("chain", 4_000),
-    ("mimic_chain", 1_000),
+    ("star", 1_500),
+    ("chain", 1_000),
+    ("mimic_chain", 250),
 ])
 def test_large_robots_load_with_linear_work(kind, n):
     if not Path("/proc/self/clear_refs").exists():
         pytest.skip("the memory bound is measured with Linux's /proc/self/clear_refs")
-    small, large = _shape(kind, n), _shape(kind, 2 * n)
+    small, large = _shape(kind, n), _shape(kind, FACTOR * n)
     assert len(large.encode()) < MAX_BYTES / 4 and large.count("<") < MAX_ELEMENTS / 2  # legal
     m = _measure(small, large)
     assert _linear(m), m
@@ -571,11 +574,11 @@ def test_the_measures_see_quadratic_work(target):
     by the call count too."""
     if not Path("/proc/self/clear_refs").exists():
         pytest.skip("measured with Linux's /proc/self/clear_refs")
-    n = {"c": 2_000, "python": 300}[target]
-    m = _measure(_shape("star", n), _shape("star", 2 * n), target)
-    assert not _linear(m) and m["cpu"] > 3.3, m
+    n = {"c": 400, "python": 60}[target]
+    m = _measure(_shape("star", n), _shape("star", FACTOR * n), target)
+    assert not _linear(m) and m["cpu"] > 40, m
     if target == "python":
-        assert m["calls"] > 3.9, m
+        assert m["calls"] > 56, m
 
 
 # -- arguments that are not a URDF ------------------------------------------------------------

@@ -37,13 +37,15 @@ def choice(id, kind, title, options, right, wrong=None, explain=""):
                     diagnoses=keys, explain=explain)
 
 
-def expression(id, title, expected, *, unit=None, swaps=None, what="a sympy expression",
-               diagnoses=(), explain=""):
-    """A derivation: a sympy expression or matrix equal to ``expected()``; ``diagnoses``:
-    the near misses (sign, transposed, swapped) its tests produce."""
-    return Exercise(id, "derive", title,
-                    Rule(judge=expression_judge(expected, unit=unit, swaps=swaps, what=what)),
-                    diagnoses=tuple(diagnoses), explain=explain)
+def expression(id, title, expected, *mistakes, unit=None, swaps=None,
+               what="a sympy expression", diagnoses=(), explain=""):
+    """A derivation: a sympy expression or matrix equal to ``expected()``. ``mistakes``:
+    its own near misses (``Mistake`` whose model is the wrong expression); ``diagnoses``:
+    the generic ones (sign, transposed, swapped) its tests produce."""
+    judge = expression_judge(expected, unit=unit, swaps=swaps, what=what, mistakes=mistakes)
+    return Exercise(id, "derive", title, Rule(judge=judge),
+                    diagnoses=tuple(dict.fromkeys((*_keys(mistakes), *diagnoses))),
+                    explain=explain)
 
 
 def judged(id, kind, title, judge, cases=(), on_error=None, diagnoses=(), explain=""):

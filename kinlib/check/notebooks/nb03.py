@@ -3,10 +3,9 @@ the Z-Y-X inverse problem, its singularity and the two gimbal-lock branches."""
 
 import numpy as np
 
-from .._symbolic import expression_judge
-from .._verdict import Verdict, as_numeric, close
+from .._verdict import Mistake, Verdict, as_numeric, close
 from ..judges import euler_angles_judge
-from ._make import choice, judged
+from ._make import choice, expression, judged
 
 
 def _abg():
@@ -65,61 +64,6 @@ def _similarity_backwards():
     first = _rot("x", g)
     second = first * (first * _rot("y", b) * first.T)
     return second * (second * _rot("z", a) * second.T)
-
-
-def _as_named(got, like):
-    """``got`` as a sympy Matrix of ``like``'s shape, its symbols those of ``like`` (matched
-    by name), or None if it is not one."""
-    import sympy as sp
-
-    try:
-        M = got if isinstance(got, sp.MatrixBase) else sp.Matrix(got)
-    except Exception:  # not something a Matrix is made of
-        return None
-    by_name = {x.name: x for x in like.free_symbols}
-    if M.shape != like.shape or any(getattr(x, "name", None) not in by_name
-                                    for x in M.free_symbols):
-        return None
-    return M.xreplace({x: by_name[x.name] for x in M.free_symbols})
-
-
-def _near(M, E, seed: int = 3) -> bool:
-    """Whether M and E agree at two random points (a quick screen before an exact test)."""
-    import sympy as sp
-
-    rng = np.random.default_rng(seed)
-    symbols = sorted(E.free_symbols | M.free_symbols, key=str)
-    for _ in range(2):
-        at = {x: sp.Float(v) for x, v in zip(symbols, rng.uniform(-2, 2, len(symbols)),
-                                             strict=True)}
-        try:
-            m = np.array(M.xreplace(at).evalf(), dtype=float)
-        except (TypeError, ValueError):
-            return False
-        if not np.allclose(m, np.array(E.xreplace(at).evalf(), dtype=float), atol=1e-9):
-            return False
-    return True
-
-
-def _derive(id, title, expected, named, diagnoses, explain=""):
-    """A derivation judged exactly (:func:`expression_judge`: right, or right up to a sign,
-    transposed, two angles swapped). An answer that is one of the ``named`` mistakes
-    ``(key, message, model)`` — screened at random points, then confirmed exactly with
-    :func:`~kinlib.symbolic.sym_equal` — gets that diagnosis."""
-    from ...symbolic import sym_equal
-
-    base = expression_judge(expected, what="a 3×3 sympy Matrix")
-
-    def judge(args, got):
-        E = expected()
-        M = _as_named(got, E)
-        if M is not None and not _near(M, E):
-            for key, message, model in named:
-                W = model()
-                if _near(M, W) and sym_equal(M, W):
-                    return Verdict(False, key, message, E)
-        return base(args, got)
-    return judged(id, "derive", title, judge, diagnoses=diagnoses, explain=explain)
 
 
 _EXTRINSIC_03_1 = ("this is Rx(γ) Ry(β) Rz(α): the turns multiplied right to left, as for "
@@ -219,29 +163,30 @@ def _zyx_judge():
 
 
 EXERCISES = [
-    _derive("03.1", "ᴬR_B for Z-Y-X Euler angles", _zyx,
-            [("extrinsic", _EXTRINSIC_03_1, _reversed),
-             ("sequence", "this is Rx(α) Ry(β) Rz(γ), the X-Y-Z Euler sequence: in Z-Y-X, "
-                          "α turns about z, β about the new y, γ about the newest x",
-              _letters_as_xyz),
-             ("R_Y sign", _RY_SIGN, _roty_sign)],
-            ("extrinsic", "sequence", "swapped", "transposed", "R_Y sign"),
-            explain="each turn is about an axis of the moving frame, an elementary rotation "
+    expression("03.1", "ᴬR_B for Z-Y-X Euler angles", _zyx,
+               Mistake("extrinsic", _EXTRINSIC_03_1, _reversed),
+               Mistake("sequence", "this is Rx(α) Ry(β) Rz(γ), the X-Y-Z Euler sequence: in "
+                                   "Z-Y-X, α turns about z, β about the new y, γ about the "
+                                   "newest x", _letters_as_xyz),
+               Mistake("R_Y sign", _RY_SIGN, _roty_sign),
+               what="a 3×3 sympy Matrix", diagnoses=("swapped", "transposed"),
+               explain="each turn is about an axis of the moving frame, an elementary rotation "
                     "described in the frame before it, so it multiplies on the right: "
                     "ᴬR_B = Rz(α) Ry(β) Rx(γ). Seed 001 prints this product entry by entry "
                     "as its eq. 4.66 (the roll–pitch–yaw matrix)."),
-    _derive("03.2", "ᴬR_B for X-Y-Z fixed angles", _xyz_fixed,
-            [("extrinsic", _EXTRINSIC_03_2, _reversed),
-             ("similarity", "the similarity transform is the wrong way round: a rotation M "
-                            "about a fixed axis, described in the current frame {B′}, is "
-                            "N = (ᴬR_B′)⁻¹ M ᴬR_B′, the inverse on the left",
-              _similarity_backwards),
-             ("sequence", "this is Rx(α) Ry(β) Rz(γ): the angle about the fixed x is γ, about "
-                          "the fixed z α (the angles (γ, β, α) go with x, y, z), and a turn "
-                          "about a fixed axis multiplies on the left", _letters_as_xyz),
-             ("R_Y sign", _RY_SIGN, _roty_sign)],
-            ("extrinsic", "similarity", "sequence", "R_Y sign", "swapped"),
-            explain="a turn about a fixed axis multiplies on the left: the similarity "
+    expression("03.2", "ᴬR_B for X-Y-Z fixed angles", _xyz_fixed,
+               Mistake("extrinsic", _EXTRINSIC_03_2, _reversed),
+               Mistake("similarity", "the similarity transform is the wrong way round: a "
+                                     "rotation M about a fixed axis, described in the current "
+                                     "frame {B′}, is N = (ᴬR_B′)⁻¹ M ᴬR_B′, the inverse on the "
+                                     "left", _similarity_backwards),
+               Mistake("sequence", "this is Rx(α) Ry(β) Rz(γ): the angle about the fixed x is "
+                                   "γ, about the fixed z α (the angles (γ, β, α) go with x, y, "
+                                   "z), and a turn about a fixed axis multiplies on the left",
+                       _letters_as_xyz),
+               Mistake("R_Y sign", _RY_SIGN, _roty_sign),
+               what="a 3×3 sympy Matrix", diagnoses=("swapped",),
+               explain="a turn about a fixed axis multiplies on the left: the similarity "
                     "transforms collapse, ᴬR_B″ = ᴬR_B′ (ᴬR_B′)⁻¹ Ry(β) ᴬR_B′ = Ry(β) Rx(γ), "
                     "then ᴬR_B = Rz(α) Ry(β) Rx(γ) — the matrix of the Z-Y-X Euler angles of "
                     "03.1."),

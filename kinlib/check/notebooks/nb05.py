@@ -29,52 +29,33 @@ def _b_perp():
 
 
 def _split_judge(expected, near, form=None):
-    """An exact sympy judge (k a unit vector) that also names the near misses ``near``:
-    ``(key, message, model)``, tried when the answer is not right and not the negative.
-    ``form``: ``(key, message, allowed, forbidden)``: a right answer that is, as a polynomial
+    """An exact sympy judge (k a unit vector) that also names the mistakes ``near``. With
+    ``form = (key, message, allowed, forbidden)``, a right answer that is, as a polynomial
     (without |k| = 1), the ``forbidden`` model and not the ``allowed`` one is written in a
     way the exercise excludes, and named so."""
     k, _ = _symbols()
-    unit = [list(k)]   # one unit vector (nested: the probe of a wrong answer normalises it)
-    base = expression_judge(expected, unit=unit, what="a 3×1 sympy Matrix in k and b")
+    base = expression_judge(expected, unit=[list(k)], what="a 3×1 sympy Matrix in k and b",
+                            mistakes=near)
+    if form is None:
+        return base
+    key, message, allowed, forbidden = form
 
     def judge(args, got):
+        verdict = base(args, got)
+        if not verdict.ok:
+            return verdict
         import sympy as sp
 
         from ...symbolic import sym_equal
 
-        verdict = base(args, got)
-        if verdict.ok and form is None:
-            return verdict
-        if not verdict.ok and verdict.key not in ("wrong", "shape", "type"):
-            return verdict
         try:
             g = sp.Matrix(got) if isinstance(got, list | tuple | np.ndarray) else got
-            g = g if isinstance(g, sp.MatrixBase) else sp.sympify(g, strict=True)
             names = {s.name: s for s in expected().free_symbols}
             g = g.xreplace({s: names[s.name] for s in g.free_symbols if s.name in names})
-        except Exception:  # not something sympy reads: the base verdict stands
-            return verdict
-        if verdict.ok:
-            key, message, allowed, forbidden = form
-            try:
-                excluded = (not sym_equal(g, allowed()) and sym_equal(g, forbidden()))
-            except Exception:  # outside what the exact reduction decides: it is right
-                excluded = False
-            return Verdict(False, key, message, expected()) if excluded else verdict
-        for key, message, model in near:
-            m = model()
-            if isinstance(m, sp.MatrixBase) != isinstance(g, sp.MatrixBase):
-                continue
-            if isinstance(m, sp.MatrixBase) and m.shape != g.shape:
-                continue
-            try:
-                same = sym_equal(g, m, unit)
-            except Exception:  # outside what the exact reduction decides
-                same = False
-            if same:
-                return Verdict(False, key, message, expected())
-        return verdict
+            excluded = not sym_equal(g, allowed()) and sym_equal(g, forbidden())
+        except Exception:  # outside what the exact reduction decides: it is right
+            excluded = False
+        return Verdict(False, key, message, expected()) if excluded else verdict
     return judge
 
 
@@ -84,25 +65,25 @@ def _sym(f):
 
 
 _PAR_NEAR = [
-    ("along b", "(k·b) b points along b; b∥ lies along the axis: (k·b) k",
-     _sym(lambda k, b: b * k.dot(b))),
-    ("perpendicular", "that is b⊥ = b − (k·b) k, the part across the axis; b∥ is the part "
-                      "you subtracted", _sym(lambda k, b: b - k * k.dot(b))),
-    ("operator", "that is the operator k kᵀ itself (the projection onto the axis): apply it "
-                 "to b, b∥ = k kᵀ b = (k·b) k", _sym(lambda k, b: k * k.T)),
-    ("scalar", "k·b is a number, the length of b∥ along the unit axis; b∥ is that number "
-               "times the direction k", _sym(lambda k, b: k.dot(b))),
+    Mistake("along b", "(k·b) b points along b; b∥ lies along the axis: (k·b) k",
+            _sym(lambda k, b: b * k.dot(b))),
+    Mistake("perpendicular", "that is b⊥ = b − (k·b) k, the part across the axis; b∥ is the "
+                             "part you subtracted", _sym(lambda k, b: b - k * k.dot(b))),
+    Mistake("operator", "that is the operator k kᵀ itself (the projection onto the axis): "
+                        "apply it to b, b∥ = k kᵀ b = (k·b) k", _sym(lambda k, b: k * k.T)),
+    Mistake("scalar", "k·b is a number, the length of b∥ along the unit axis; b∥ is that "
+                      "number times the direction k", _sym(lambda k, b: k.dot(b))),
 ]
 
 _PERP_NEAR = [
-    ("quarter turn", "k × b is b⊥ turned by 90° about k (perpendicular to b⊥, of the same "
-                     "length); one more cross product with k turns it on, to −b⊥: so "
-                     "b⊥ = −k × (k × b)", _sym(lambda k, b: k.cross(b))),
-    ("associative", "(k × k) × b is zero, since k × k = 0: the cross product is not "
-                    "associative, and the brackets must be k × (k × b)",
-     _sym(lambda k, b: k.cross(k).cross(b))),
-    ("parallel", "that is b∥ = (k·b) k, the part along the axis; b⊥ is the rest",
-     _sym(lambda k, b: k * k.dot(b))),
+    Mistake("quarter turn", "k × b is b⊥ turned by 90° about k (perpendicular to b⊥, of the "
+                            "same length); one more cross product with k turns it on, to "
+                            "−b⊥: so b⊥ = −k × (k × b)", _sym(lambda k, b: k.cross(b))),
+    Mistake("associative", "(k × k) × b is zero, since k × k = 0: the cross product is not "
+                           "associative, and the brackets must be k × (k × b)",
+            _sym(lambda k, b: k.cross(k).cross(b))),
+    Mistake("parallel", "that is b∥ = (k·b) k, the part along the axis; b⊥ is the rest",
+            _sym(lambda k, b: k * k.dot(b))),
 ]
 
 _PERP_FORM = ("dot product", "that is b⊥ indeed, but written as b − (k·b) k, with a dot product "

@@ -3,10 +3,9 @@ composition."""
 
 import numpy as np
 
-from .._symbolic import expression_judge
 from .._verdict import RIGHT, Mistake, Verdict, as_numeric, close, fmt
 from ..mistakes import CONJUGATE, DEGREES, HALF_ANGLE, ORDER, XYZW
-from ._make import choice, judged, value
+from ._make import choice, expression, judged, value
 
 # --- 06.1 · which term of the product changes sign when the factors are swapped ---------
 
@@ -37,25 +36,12 @@ def _rz_sym(factor):
     return model
 
 
-def _conjugation_judge():
-    what = "a 3×3 sympy Matrix in theta"
-    right = expression_judge(_rz_sym(1), what=what, swaps=())
-    near = [(CONJUGATE.key, expression_judge(_rz_sym(-1), what=what, swaps=()),
-             "that is q̄ p q, the conjugation the other way round: it turns by −θ (the "
-             "transpose Rᵀ). A rotation is p ↦ q p q̄ = q p q⁻¹"),
-            (HALF_ANGLE.key, expression_judge(_rz_sym(2), what=what, swaps=()),
-             "your matrix turns by 2θ: the quaternion of θ about z is "
-             "(cos θ/2, 0, 0, sin θ/2), with the half angle")]
-
-    def judge(args, got):
-        verdict = right(args, got)
-        if verdict.ok or verdict.key in ("type", "symbols", "shape"):
-            return verdict
-        for key, model, message in near:
-            if model(args, got).ok:
-                return Verdict(False, key, message)
-        return verdict
-    return judge
+_CONJUGATION_MISTAKES = (
+    CONJUGATE.of(_rz_sym(-1), "that is q̄ p q, the conjugation the other way round: it turns "
+                              "by −θ (the transpose Rᵀ). A rotation is p ↦ q p q̄ = q p q⁻¹"),
+    HALF_ANGLE.of(_rz_sym(2), "your matrix turns by 2θ: the quaternion of θ about z is "
+                              "(cos θ/2, 0, 0, sin θ/2), with the half angle"),
+)
 
 
 # --- 06.3 · seed 002's Euler parameters, scalar last --------------------------------------
@@ -183,11 +169,12 @@ EXERCISES = [
                           "q2 q1 differ whenever v1 and v2 are not parallel")},
            explain="only the cross product cares about the order, v2 × v1 = −v1 × v2: "
                    "q1 q2 − q2 q1 = (0, 2 v1 × v2)."),
-    judged("06.2", "derive", "the matrix of p ↦ q p q̄ for q about z", _conjugation_judge(),
-           diagnoses=(CONJUGATE.key, HALF_ANGLE.key),
-           explain="it is R_Z(θ), the rotation about z of notebook 01: its entries come out as "
-                   "cos²(θ/2) − sin²(θ/2) = cos θ and 2 sin(θ/2) cos(θ/2) = sin θ. The two half "
-                   "angles, one from q and one from q̄, add up to the whole angle."),
+    expression("06.2", "the matrix of p ↦ q p q̄ for q about z", _rz_sym(1),
+               *_CONJUGATION_MISTAKES, what="a 3×3 sympy Matrix in theta", swaps=(),
+               explain="it is R_Z(θ), the rotation about z of notebook 01: its entries come "
+                       "out as cos²(θ/2) − sin²(θ/2) = cos θ and 2 sin(θ/2) cos(θ/2) = sin θ. "
+                       "The two half angles, one from q and one from q̄, add up to the whole "
+                       "angle."),
     value("06.3", "compute", "seed 002's Euler parameters as a kinlib quaternion", _q_seed,
           XYZW.of(lambda: _eps_seed002(_R_seed()),
                   "you kept seed 002's order (ε1, ε2, ε3, ε4): ε4 = cos θ/2 is the scalar and "

@@ -109,32 +109,33 @@ def _first_order(expr):
     return e.coeff(eps, 0) + eps * e.coeff(eps, 1)
 
 
+_DUAL_ANGLE_MISTAKES = (
+    Mistake("chain rule", "the dual part is d/dθ of cos(θ/2) times d: the inner derivative of "
+                          "θ/2 brings a factor ½, so it is −(d/2) sin(θ/2)",
+            _cos_dual(inner_half=False)),
+    Mistake("derivative sign", "the derivative of cos is −sin: cos(a + εb) = cos a − ε b sin a",
+            _cos_dual(sign=1)),
+    HALF_ANGLE.of(_cos_dual(half=False), "this is cos(θ + εd), the whole dual angle: the "
+                                         "scalar part of the dual quaternion is cos of the "
+                                         "half angle, (θ + εd)/2"),
+)
+
+
 def _dual_angle_judge():
-    what = "a sympy expression in theta, d and epsilon"
-    right = expression_judge(_cos_dual(), what=what, swaps=())
-    near = [("chain rule", _cos_dual(inner_half=False),
-             "the dual part is d/dθ of cos(θ/2) times d: the inner derivative of θ/2 brings "
-             "a factor ½, so it is −(d/2) sin(θ/2)"),
-            ("derivative sign", _cos_dual(sign=1),
-             "the derivative of cos is −sin: cos(a + εb) = cos a − ε b sin a"),
-            (HALF_ANGLE.key, _cos_dual(half=False),
-             "this is cos(θ + εd), the whole dual angle: the scalar part of the dual "
-             "quaternion is cos of the half angle, (θ + εd)/2")]
-    near = [(key, expression_judge(model, what=what, swaps=()), message)
-            for key, model, message in near]
+    """Exact, with the named mistakes; and an answer that is right only once cut after ε
+    (still cos((θ + εd)/2), or with ε² terms left) is told to expand."""
+    right = expression_judge(_cos_dual(), what="a sympy expression in theta, d and epsilon",
+                             swaps=(), mistakes=_DUAL_ANGLE_MISTAKES)
 
     def judge(args, got):
         verdict = right(args, got)
-        if verdict.ok or verdict.key in ("type", "symbols"):
+        if verdict.key != "wrong":
             return verdict
-        for key, model, message in near:
-            if model(args, got).ok:
-                return Verdict(False, key, message)
         try:
             expanded = _first_order(got)
         except Exception:  # not something sympy can expand in ε
-            expanded = None
-        if expanded is not None and right(args, expanded).ok:
+            return verdict
+        if right(args, expanded).ok:
             return Verdict(False, "not expanded", "this is cos((θ + εd)/2) itself, not yet "
                                                   "written to first order in ε: expand it "
                                                   "with the notebook's `dual` (ε² = 0 ends "

@@ -3,10 +3,9 @@ from two frames, the 3-DOF arm's tip, one PUMA link transform, a modified-DH tab
 
 import numpy as np
 
-from .._symbolic import expression_judge
-from .._verdict import Mistake, Verdict
+from .._verdict import Mistake
 from ..mistakes import DEGREES, MODIFIED_DH, ORDER, SIGN, SWAPPED
-from ._make import choice, function, judged, value
+from ._make import choice, expression, function, value
 
 # ---- 09.2: a row read back from frames i−1 and i -----------------------------------------
 
@@ -80,33 +79,19 @@ def _tip(transform="dh_transform", alpha1_sign=1, reverse=False):
     return (A[0] * A[1] * A[2])[:3, 3]
 
 
-def _tip_judge():
-    """The exact judge (sign, transposed, swapped symbols), then the mistakes of a DH
-    product: Craig's convention, the twist's sign, the product reversed."""
-    exact = expression_judge(_tip, what="a 3×1 sympy Matrix")
-    mistakes = [
-        (MODIFIED_DH.key, "this is the tip of the modified (Craig) product, mdh_transform or "
-                          "Rx(α) Tx(a) Rz(θ) Tz(d) per row; the table is standard DH: "
-                          "A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i), kl.dh_transform",
-         lambda: _tip("mdh_transform")),
-        (SIGN.key, "α_1 has the wrong sign: with α_1 = −90° the arm's plane is turned the "
-                   "other way about x_1 and the height comes out d_1 − (a_2 s_2 + a_3 s_23); "
-                   "the table has α_1 = +90°",
-         lambda: _tip(alpha1_sign=-1)),
-        (ORDER.key, "the product is reversed: T_03 = A_1 A_2 A_3, the base's transform on "
-                    "the left, because A_i is frame i seen from frame i−1",
-         lambda: _tip(reverse=True)),
-    ]
-
-    def judge(args, got):
-        verdict = exact(args, got)
-        if verdict.ok or verdict.key != "wrong":
-            return verdict
-        for key, message, model in mistakes:
-            if expression_judge(model)(args, got).ok:
-                return Verdict(False, key, message, verdict.expected)
-        return verdict
-    return judge
+_TIP_MISTAKES = (  # the mistakes of a DH product
+    MODIFIED_DH.of(lambda: _tip("mdh_transform"),
+                   "this is the tip of the modified (Craig) product, mdh_transform or "
+                   "Rx(α) Tx(a) Rz(θ) Tz(d) per row; the table is standard DH: "
+                   "A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i), kl.dh_transform"),
+    SIGN.of(lambda: _tip(alpha1_sign=-1),
+            "α_1 has the wrong sign: with α_1 = −90° the arm's plane is turned the other way "
+            "about x_1 and the height comes out d_1 − (a_2 s_2 + a_3 s_23); the table has "
+            "α_1 = +90°"),
+    ORDER.of(lambda: _tip(reverse=True),
+             "the product is reversed: T_03 = A_1 A_2 A_3, the base's transform on the left, "
+             "because A_i is frame i seen from frame i−1"),
+)
 
 
 # ---- 09.4: one PUMA link transform -------------------------------------------------------
@@ -186,9 +171,9 @@ EXERCISES = [
                      "products pick out d and a; θ and α need atan2 of the cross product's "
                      "component along the axis they turn about, and the dot product, for "
                      "their sign."),
-    judged("09.3", "derive", "the 3-DOF arm's tip position", _tip_judge(),
-           diagnoses=("modified", "sign", "order", "swapped", "transposed"),
-           explain="the result reads like the arm: in its vertical plane the 2R arm reaches "
+    expression("09.3", "the 3-DOF arm's tip position", _tip, *_TIP_MISTAKES,
+               what="a 3×1 sympy Matrix", diagnoses=("swapped", "transposed"),
+               explain="the result reads like the arm: in its vertical plane the 2R arm reaches "
                    "r = a_2 cos θ_2 + a_3 cos(θ_2 + θ_3) and rises to d_1 + a_2 sin θ_2 + "
                    "a_3 sin(θ_2 + θ_3); the base turns that plane by θ_1, so x = r cos θ_1, "
                    "y = r sin θ_1. α_1 = 90° is what stands the plane up: it turns z_1, the "

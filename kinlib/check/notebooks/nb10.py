@@ -3,10 +3,9 @@
 
 import numpy as np
 
-from .._symbolic import expression_judge
 from .._verdict import RIGHT, Mistake, Verdict, as_numeric, close
 from ..mistakes import DEGREES, OTHER_ELBOW, SIGN, SWAPPED
-from ._make import choice, judged, value
+from ._make import choice, expression, judged, value
 
 # --- 10.1 · c2 from the law of cosines ------------------------------------------------------
 
@@ -24,31 +23,15 @@ def _c2(factor, precedence=False):
     return model
 
 
-def _c2_judge():
-    what = "a sympy expression in x, y, l_1, l_2 (the expression, not sympy's list)"
-    right = expression_judge(_c2(1), what=what, swaps=())
-    near = [(SIGN.key, expression_judge(_c2(-1), what=what, swaps=()),
-             "that is −c2 = cos(π − θ2): the cosine of the triangle's angle at the elbow. "
-             "The forward kinematics gives x² + y² = l1² + l2² + 2 l1 l2 c2, with a plus, "
-             "because θ2 is measured from link 1, not inside the triangle"),
-            ("factor 2", expression_judge(_c2(2), what=what, swaps=()),
-             "the 2 of 2 l1 l2 c2 is missing: divide by 2 l1 l2"),
-            ("precedence", expression_judge(_c2(1, precedence=True), what=what, swaps=()),
-             "`/ 2 * L1 * L2` divides by 2 and then multiplies by l1 l2: write "
-             "`/ (2 * L1 * L2)`")]
-
-    def judge(args, got):
-        if isinstance(got, list | tuple) and len(got) == 1:
-            return Verdict(False, "type", "that is sympy's list of solutions: store its "
-                                          "element, `sp.solve(...)[0]`")
-        verdict = right(args, got)
-        if verdict.ok or verdict.key in ("type", "symbols", "shape"):
-            return verdict
-        for key, model, message in near:
-            if model(args, got).ok:
-                return Verdict(False, key, message)
-        return verdict
-    return judge
+_C2_MISTAKES = (
+    SIGN.of(_c2(-1), "that is −c2 = cos(π − θ2): the cosine of the triangle's angle at the "
+                     "elbow. The forward kinematics gives x² + y² = l1² + l2² + 2 l1 l2 c2, "
+                     "with a plus, because θ2 is measured from link 1, not inside the "
+                     "triangle"),
+    Mistake("factor 2", "the 2 of 2 l1 l2 c2 is missing: divide by 2 l1 l2", _c2(2)),
+    Mistake("precedence", "`/ 2 * L1 * L2` divides by 2 and then multiplies by l1 l2: write "
+                          "`/ (2 * L1 * L2)`", _c2(1, precedence=True)),
+)
 
 
 # --- 10.2 · seed 001's inverse kinematics, elbow "down" --------------------------------------
@@ -178,9 +161,9 @@ def _base_option() -> str:
 
 
 EXERCISES = [
-    judged("10.1", "derive", "c2 from the law of cosines", _c2_judge(),
-           diagnoses=("sign", "factor 2", "precedence"),
-           explain="c2 = (x² + y² − l1² − l2²) / (2 l1 l2): the law of cosines solved for "
+    expression("10.1", "c2 from the law of cosines", _c2(1), *_C2_MISTAKES, swaps=(),
+               what="a sympy expression in x, y, l_1, l_2 (the expression, not sympy's list)",
+               explain="c2 = (x² + y² − l1² − l2²) / (2 l1 l2): the law of cosines solved for "
                    "the cosine of θ2. A real θ2 needs −1 ≤ c2 ≤ 1, which is the condition for "
                    "the target to be reachable (section 4)"),
     judged("10.2", "implement", 'seed 001\'s 2R inverse kinematics, elbow "down"', _ik_judge,

@@ -4,11 +4,10 @@ from functools import cache
 
 import numpy as np
 
-from .._symbolic import expression_judge
-from .._verdict import Mistake, Verdict
+from .._verdict import Mistake
 from ..judges import choice_judge
 from ..mistakes import DEGREES, FRAME, ORDER, ROWS, SIGN, TRANSPOSED
-from ._make import function, judged, value
+from ._make import expression, function, judged, value
 
 
 # -- 12.1 · ω of the tilting turntable R(t) = Rx(γ(t)) Rz(α(t)) ----------------------------
@@ -58,53 +57,22 @@ def _omega_unturned():
     return sp.Matrix([gd, 0, ad])
 
 
-_OMEGA_WHAT = "a 3×1 sympy Matrix"
-_omega_right = expression_judge(_omega_space, what=_OMEGA_WHAT)
-_OMEGA_SIGN = ("right up to the sign: R Ṙᵀ = (Ṙ Rᵀ)ᵀ = −S(ω); the angular velocity is the "
-               "vector of Ṙ Rᵀ, the derivative first")
-_OMEGA_NEAR_MISSES = (  # tried in order; each is judged like the right answer
-    (expression_judge(_omega_body, what=_OMEGA_WHAT), FRAME.key,
-     "this is the body angular velocity Rᵀω, the vector of Rᵀ Ṙ, expressed in the table's "
-     "own frame (its last entry is the turn rate about the table's z axis): the fixed-frame "
-     "ω is the vector of Ṙ Rᵀ"),
-    (expression_judge(_omega_other_order, what=_OMEGA_WHAT), ORDER.key,
-     "this is the angular velocity of R_z(α) R_x(γ), the product in the other order: the "
-     "table tilts about the fixed x axis and turns about its own z axis, R = R_x(γ) R_z(α) "
-     "(the rotation about the moving axis stands on the right)"),
-    (expression_judge(_omega_unturned, what=_OMEGA_WHAT), "axis",
-     "you added γ̇ x + α̇ z, both axes as they stand at rest: the table's z axis tilts with "
-     "γ, so α̇ turns about R_x(γ) z (section 3: add angular velocities only once they are "
-     "expressed in one frame)"),
+_OMEGA_MISTAKES = (  # tried in order, before the generic near misses
+    FRAME.of(_omega_body,
+             "this is the body angular velocity Rᵀω, the vector of Rᵀ Ṙ, expressed in the "
+             "table's own frame (its last entry is the turn rate about the table's z axis): "
+             "the fixed-frame ω is the vector of Ṙ Rᵀ"),
+    ORDER.of(_omega_other_order,
+             "this is the angular velocity of R_z(α) R_x(γ), the product in the other order: "
+             "the table tilts about the fixed x axis and turns about its own z axis, "
+             "R = R_x(γ) R_z(α) (the rotation about the moving axis stands on the right)"),
+    Mistake("axis", "you added γ̇ x + α̇ z, both axes as they stand at rest: the table's z "
+                    "axis tilts with γ, so α̇ turns about R_x(γ) z (section 3: add angular "
+                    "velocities only once they are expressed in one frame)", _omega_unturned),
+    SIGN.of(lambda: -_omega_space(),
+            "right up to the sign: R Ṙᵀ = (Ṙ Rᵀ)ᵀ = −S(ω); the angular velocity is the vector "
+            "of Ṙ Rᵀ, the derivative first"),
 )
-
-
-def _tidied(got):
-    """A sympy answer with its trigonometry simplified: an unsimplified ṘRᵀ still holds α,
-    which cancels (sin²α + cos²α = 1); the judge would take it for a foreign symbol."""
-    import sympy as sp
-
-    from ...symbolic import simplify_rotation
-
-    if not isinstance(got, sp.MatrixBase | list | tuple | np.ndarray):
-        return got
-    try:
-        m = sp.Matrix(got)
-        return simplify_rotation(m) if len(m) == 3 else got
-    except Exception:  # not something to simplify: the judge says what it is
-        return got
-
-
-def _judge_omega(args, got):
-    got = _tidied(got)
-    v = _omega_right(args, got)
-    if v.ok or v.key in ("type", "shape", "transposed"):
-        return v
-    for judge, key, message in _OMEGA_NEAR_MISSES:  # (before "symbols": they hold α)
-        if judge(args, got).ok:
-            return Verdict(False, key, message, v.expected)
-    if v.key == SIGN.key:
-        return Verdict(False, SIGN.key, _OMEGA_SIGN, v.expected)
-    return v
 
 
 # -- 12.2 · the turntable and the wheel -----------------------------------------------------
@@ -165,12 +133,12 @@ def _judge_scara(args, got):
 
 
 EXERCISES = [
-    judged("12.1", "derive", "ω of the tilting turntable from Ṙ Rᵀ", _judge_omega,
-           diagnoses=(FRAME.key, ORDER.key, "axis", SIGN.key),
-           explain="ω = γ̇ x + α̇ R_x(γ) z = (γ̇, −α̇ sin γ, α̇ cos γ): the tilt rate about "
-                   "the fixed x axis plus the turn rate about the table's own axis, as the "
-                   "tilt has turned it. Section 3 makes a rule of this: angular velocities "
-                   "add once they are expressed in one frame"),
+    expression("12.1", "ω of the tilting turntable from Ṙ Rᵀ", _omega_space, *_OMEGA_MISTAKES,
+               what="a 3×1 sympy Matrix",
+               explain="ω = γ̇ x + α̇ R_x(γ) z = (γ̇, −α̇ sin γ, α̇ cos γ): the tilt rate "
+                       "about the fixed x axis plus the turn rate about the table's own axis, "
+                       "as the tilt has turned it. Section 3 makes a rule of this: angular "
+                       "velocities add once they are expressed in one frame"),
     value("12.2", "compute", "the wheel on the turntable: ω in the base frame",
           lambda: W01 + _R01() @ W12,
           FRAME.of(lambda: W01 + W12, "you added ω¹₁,₂ as it is, but it is expressed in the "

@@ -5,11 +5,10 @@ from functools import cache
 
 import numpy as np
 
-from .._symbolic import expression_judge
-from .._verdict import Mistake, Verdict
+from .._verdict import Mistake
 from ..judges import choice_judge
 from ..mistakes import DEGREES, SIGN, SWAPPED, TRANSPOSED
-from ._make import judged, value
+from ._make import expression, judged, value
 
 L1, L2 = 1.0, 0.8   # the notebook's arm
 
@@ -34,20 +33,22 @@ def _det_2r():
     return sp.Matrix(tip[:2]).jacobian([t1, t2]).det()
 
 
-_det_judge = expression_judge(_det_2r)
-_DET_MESSAGES = {
-    SIGN.key: "right up to the sign: are your columns in the order (θ2, θ1)? Swapping two "
-              "columns flips a determinant; column j is the tip velocity ∂(x, y)/∂θj",
-    SWAPPED.key: "θ1 and θ2 are swapped: det J cannot depend on θ1, since turning joint 1 "
-                 "turns the whole arm without changing its shape; it depends on the elbow "
-                 "angle θ2"}
+def _det_swapped():
+    import sympy as sp
+
+    t1, t2 = sp.symbols("theta_1 theta_2", real=True)
+    return _det_2r().xreplace({t1: t2, t2: t1})
 
 
-def _judge_det(args, got):
-    v = _det_judge(args, got)
-    if v.key in _DET_MESSAGES:
-        return Verdict(False, v.key, _DET_MESSAGES[v.key], v.expected)
-    return v
+_DET_MISTAKES = (
+    SIGN.of(lambda: -_det_2r(),
+            "right up to the sign: are your columns in the order (θ2, θ1)? Swapping two "
+            "columns flips a determinant; column j is the tip velocity ∂(x, y)/∂θj"),
+    SWAPPED.of(_det_swapped,
+               "θ1 and θ2 are swapped: det J cannot depend on θ1, since turning joint 1 "
+               "turns the whole arm without changing its shape; it depends on the elbow "
+               "angle θ2"),
+)
 
 
 # -- 13.2 · the lost direction at θ2 = 0 -----------------------------------------------------
@@ -102,9 +103,8 @@ def _w_with_phi_row():
 
 
 EXERCISES = [
-    judged("13.1", "derive", "det J of the planar 2R arm", _judge_det,
-           diagnoses=(SIGN.key, SWAPPED.key),
-           explain="det J = l1 l2 sin θ2 (seed 001 gets there through c1 s12 − s1 c12 = "
+    expression("13.1", "det J of the planar 2R arm", _det_2r, *_DET_MISTAKES,
+               explain="det J = l1 l2 sin θ2 (seed 001 gets there through c1 s12 − s1 c12 = "
                    "sin θ2). It does not depend on θ1, and it vanishes exactly at θ2 = 0 and "
                    "θ2 = π: the arm stretched out or folded back"),
     judged("13.2", "predict", "the tip direction lost at θ2 = 0", _judge_lost,

@@ -2,9 +2,8 @@
 
 import numpy as np
 
-from .._symbolic import expression_judge
-from .._verdict import Mistake, Verdict
-from ._make import choice, judged, value
+from .._verdict import Mistake
+from ._make import choice, expression, value
 
 #: the notebook's arm (metres)
 L1, L2 = 1.0, 0.8
@@ -74,35 +73,18 @@ def _g_abs_near_misses():
     ]
 
 
-def _g_abs_judge():
-    import sympy as sp
+def _g_abs_swapped():
+    p1, p2, *_ = _symbols()
+    return _g_abs().xreplace({p1: p2, p2: p1})
 
-    from ...symbolic import sym_equal
 
-    base = expression_judge(_g_abs, what="a 2×2 sympy Matrix")
-
-    def judge(args, got):
-        verdict = base(args, got)
-        if verdict.key == "swapped":
-            return Verdict(False, "swapped", f"{verdict.message}: are the columns of J' in the "
-                                             "order (φ2, φ1)? Column k is ∂(x, y)/∂φk, so "
-                                             "G'11 belongs to link 1: l1²", verdict.expected)
-        if verdict.key != "wrong":
-            return verdict
-        by_name = {s.name: s for s in _symbols()}
-        try:
-            g = sp.Matrix(got)
-            g = g.xreplace({s: by_name[s.name] for s in g.free_symbols})
-        except Exception:  # the base judge already said it is not right
-            return verdict
-        for key, message, model in _g_abs_near_misses():
-            try:
-                if sym_equal(g, model):
-                    return Verdict(False, key, message, verdict.expected)
-            except Exception:
-                continue
-        return verdict
-    return judge
+def _g_abs_mistakes():
+    """The slips in J'ᵀJ' as mistakes: the columns of J' swapped, then the classic ones."""
+    swapped = Mistake("swapped", "φ_1 and φ_2 are swapped in your answer: are the columns of "
+                                 "J' in the order (φ2, φ1)? Column k is ∂(x, y)/∂φk, so G'11 "
+                                 "belongs to link 1: l1²", _g_abs_swapped)
+    return [swapped, *(Mistake(key, message, lambda m=model: m)
+                       for key, message, model in _g_abs_near_misses())]
 
 
 def _ee_step(dtheta=DTHETA_STEP):
@@ -146,10 +128,9 @@ EXERCISES = [
                                   "(a ring) does that. Link 2 starts at the elbow, which "
                                   "moves with θ1, and points along θ1 + θ2: whether it hits "
                                   "the disc depends on both angles")}),
-    judged("14.2", "derive", "the metric J'ᵀJ' in absolute link angles", _g_abs_judge(),
-           diagnoses=("swapped", "seed typo", "angle sum", "doubled", "symmetric",
-                      "cross term", "coordinates"),
-           explain="G' = [[l1², l1 l2 cos(φ1 − φ2)], [l1 l2 cos(φ1 − φ2), l2²]]: again one "
+    expression("14.2", "the metric J'ᵀJ' in absolute link angles", _g_abs, *_g_abs_mistakes(),
+               what="a 2×2 sympy Matrix",
+               explain="G' = [[l1², l1 l2 cos(φ1 − φ2)], [l1 l2 cos(φ1 − φ2), l2²]]: again one "
                    "angle only, the angle between the two links (φ2 − φ1 = θ2). The end's "
                    "velocity is the sum of l1 δφ1 and l2 δφ2, each perpendicular to its link; "
                    "the off-diagonal entries are their dot product"),
