@@ -42,7 +42,7 @@ lint: $(STAMP)
 WORKERS ?= 2
 
 test: lint
-	$(BIN)/python -m pytest -n $(WORKERS) --dist loadfile --no-loadscope-reorder
+	$(BIN)/python -m pytest -n $(WORKERS) --dist loadfile
 
 site: $(STAMP)
 	$(BIN)/python -m kinlib.site --out site --jobs 2

@@ -116,15 +116,6 @@ def _start_site_build(jobs: int) -> None:
     _state["site_build"] = proc
 
 
-#: the longest file of the suite runs first, so that under two workers the rest of the suite
-#: runs beside it instead of after it
-FIRST = ("tests/test_lab.py",)
-
-
-def pytest_collection_modifyitems(config, items):
-    items.sort(key=lambda item: item.nodeid.split("::")[0] not in FIRST)  # stable
-
-
 def pytest_collection_finish(session):
     if session.config.option.collectonly:
         return
