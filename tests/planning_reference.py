@@ -109,7 +109,26 @@ def ref_cost(grid, metric, i, j, k):
     return max(arc, float(np.linalg.norm(b - a)))
 
 
-def ref_dijkstra(grid, metric, s, t):
+def occupancy_disagreements(grid, scene, l1, l2, margin) -> tuple[int, list]:
+    """Every cell of ``grid`` against plain geometry (the arm's clearance from ``scene``):
+    the number of cells decided (not within 1e-9 of the margin) and the cells where the
+    grid says otherwise."""
+    n1, n2 = grid.shape
+    decided, wrong = 0, []
+    for i in range(n1):
+        for j in range(n2):
+            d = arm_clearance((theta(n1, i), theta(n2, j)), l1, l2, scene)
+            if abs(d - margin) > 1e-9:
+                decided += 1
+                if grid.occupied[i, j] != (d < margin):
+                    wrong.append((i, j, d))
+    return decided, wrong
+
+
+def ref_dijkstra(grid, metric, s, t, cost=None):
+    """The cheapest cost from cell s to cell t over free cells of the 8-connected torus;
+    a move costs ``cost(i, j, k)`` (default: :func:`ref_cost` of ``metric``)."""
+    cost = cost or (lambda i, j, k: ref_cost(grid, metric, i, j, k))
     n1, n2 = grid.shape
     dist = {s: 0.0}
     heap, done = [(0.0, s)], set()
@@ -124,7 +143,7 @@ def ref_dijkstra(grid, metric, s, t):
             v = ((u[0] + di) % n1, (u[1] + dj) % n2)
             if grid.occupied[v] or v in done:
                 continue
-            nd = d + ref_cost(grid, metric, u[0], u[1], k)
+            nd = d + cost(u[0], u[1], k)
             if nd < dist.get(v, math.inf):
                 dist[v] = nd
                 heapq.heappush(heap, (nd, v))

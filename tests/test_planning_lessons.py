@@ -7,7 +7,6 @@ and the drawing helpers of kinlib.plot.cspace against what they were given.
 """
 
 import functools
-import heapq
 import math
 
 import matplotlib
@@ -15,7 +14,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 from matplotlib.colors import to_rgb
-from planning_reference import MOVES, arm_clearance, dense, ref_cost, ref_dijkstra, theta
+from planning_reference import (
+    MOVES,
+    arm_clearance,
+    dense,
+    occupancy_disagreements,
+    ref_cost,
+    ref_dijkstra,
+    theta,
+)
 
 import kinlib as kl
 from kinlib import KinlibError
@@ -62,14 +69,8 @@ def test_lesson_grid_matches_plain_geometry_in_every_cell():
     n1, n2 = grid.shape
     margin = 0.5 * ((L1 + L2) * 2 * math.pi / n1 + L2 * 2 * math.pi / n2)
     assert grid.margin == pytest.approx(margin)
-    checked = 0
-    for i in range(n1):
-        for j in range(n2):
-            d = arm_clearance((theta(n1, i), theta(n2, j)), L1, L2, SCENE)
-            if abs(d - margin) > 1e-9:
-                assert grid.occupied[i, j] == (d < margin), (i, j, d)
-                checked += 1
-    assert checked > 0.99 * n1 * n2
+    checked, wrong = occupancy_disagreements(grid, SCENE, L1, L2, margin)
+    assert not wrong and checked > 0.99 * n1 * n2, wrong[:5]
 
 
 def test_only_link_2_reaches_the_lesson_obstacles():
@@ -106,25 +107,6 @@ def test_a_disc_only_link_2_reaches_is_a_blob_one_link_1_reaches_a_band():
 # --------------------------------------------------------------------------- the lesson's paths
 
 
-def plain_dijkstra(occupied, cost, s, t):
-    """Cheapest path cost from cell s to cell t of the 8-connected torus; cost(i, j, k)."""
-    n1, n2 = occupied.shape
-    dist, heap, done = {s: 0.0}, [(0.0, s)], set()
-    while heap:
-        d, u = heapq.heappop(heap)
-        if u in done:
-            continue
-        if u == t:
-            return d
-        done.add(u)
-        for k, (di, dj) in enumerate(MOVES):
-            v = ((u[0] + di) % n1, (u[1] + dj) % n2)
-            if not occupied[v] and d + cost(*u, k) < dist.get(v, math.inf):
-                dist[v] = d + cost(*u, k)
-                heapq.heappush(heap, (dist[v], v))
-    return math.inf
-
-
 @pytest.mark.parametrize("metric", ["joint", "ee"])
 def test_lesson_plans_are_optimal(metric):
     grid, start, goal, plans = lesson()
@@ -132,11 +114,11 @@ def test_lesson_plans_are_optimal(metric):
     t = (cell(96, goal[0]), cell(96, goal[1]))
     # an "ee" move costs the same at every θ1 (turning θ1 rotates the whole arm): one per (j, k)
     per_move = functools.cache(lambda j, k: ref_cost(grid, metric, 0, j, k))
-    want = plain_dijkstra(grid.occupied, lambda i, j, k: per_move(j, k), s, t)
+    want = ref_dijkstra(grid, metric, s, t, cost=lambda i, j, k: per_move(j, k))
     plan = plans[metric]
     assert plan.success and plan.cost == pytest.approx(want, rel=1e-9)
     assert tuple(plan.cells[0]) == s and tuple(plan.cells[-1]) == t
-    if metric == "joint":  # and the reference's own Dijkstra, which charges every move
+    if metric == "joint":  # and with every move charged at its own θ1
         assert ref_dijkstra(grid, metric, s, t) == pytest.approx(want, rel=1e-12)
 
 
