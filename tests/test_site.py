@@ -10,7 +10,7 @@ in headless Chromium with all http(s) blocked and asserts:
 - the mathematics is typeset: MathJax finished, at least as many formulas as the
   notebook's Markdown has ``$…$``/``$$…$$`` pairs, no error node, and no raw TeX
   (``$`` or ``\\command``) left in the text;
-- the meshcat snapshots (08, 09, 10) draw their robot (filled joint-axis pixels and the
+- the meshcat snapshots (08, 09, 11) draw their robot (filled joint-axis pixels and the
   robot's names in the three.js scene; 10's carries its IK animation); removing the robot
   in that same page empties the picture (the control);
 - every matplotlib animation plays: *Next frame* shows another image and *Play* moves

@@ -268,7 +268,7 @@ def _astar_cases(rng):
         blocked = (start, goal)[n % 2]
         free[blocked] = False
         out.append((free, start, goal, *LENGTHS[n + 1], ("joint", "ee")[n // 2]))
-    # no path: two walls cut the torus into two bands; an island; the walls of notebook 12
+    # no path: two walls cut the torus into two bands; an island; the walls of notebook 14
     for n, axis in enumerate((0, 1)):
         shape = sizes[n + 2]
         free = _wall(_wall(_random_free(rng, shape, 0.1), 4, axis), shape[axis] - 6, axis)
