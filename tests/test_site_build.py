@@ -166,8 +166,8 @@ def test_a_small_site_is_built_from_scratch_and_rebuilt(tmp_path):
         nbformat.v4.new_code_cell("import os\nprint(os.environ.get('KINLIB_STATIC_SCENES'),"
                                   " os.environ.get('KINLIB_MESHCAT_ZMQ_URL'))")])
     out = tmp_path / "site"
-    seconds = build_site(out, folder, log=lambda _: None)
-    assert list(seconds) == ["01_small"]
+    built = build_site(out, folder, log=lambda _: None)  # notebook -> its build time
+    assert list(built) == ["01_small"]
     page = (out / "01_small.html").read_text()
     assert "1 None" in page  # static scenes on, the test session's server hidden
     assert '<a href="index.html">Course outline</a>' in page
