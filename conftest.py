@@ -1,14 +1,7 @@
-"""Session-wide test set-up: one meshcat server for the whole pytest run.
+"""Session-wide test set-up: exercise checks, the course site's build, hypothesis.
 
-``pytest_configure`` starts ``python -m meshcat.servers.zmqserver`` in its own process
-group (:func:`kinlib._viewer_server.start_server`; it also dies if pytest is killed) and
-exports its addresses as ``KINLIB_MESHCAT_ZMQ_URL`` / ``KINLIB_MESHCAT_WEB_URL`` (and its
-pid as ``KINLIB_MESHCAT_SERVER_PID``), so every ``RobotVisualizer`` in the tests and in
-notebooks run by nbval (whose kernels inherit the environment) talks to it.
-``pytest_unconfigure`` ends the whole process group and restores the environment. Hooks,
-not fixtures: nbval kills kernels hard and fixture teardown is skipped on some exits, which
-leaks servers. If ``KINLIB_MESHCAT_ZMQ_URL`` is already set, that server is used and none
-is started. See DEVELOPERS.md.
+The 3-D viewer is a widget (``kinlib.viz.Scene``): it needs no server, so the session
+starts none.
 
 The instructor edition of the notebooks (``instructor/``) runs under nbval, and every
 exercise's check must say "right" there: ``pytest_runtest_call`` reads the check outputs
@@ -38,26 +31,12 @@ from pathlib import Path
 
 import pytest
 
-from kinlib._viewer_server import ViewerServer, _die_with, start_server
+from kinlib._process import die_with
 
 ROOT = Path(__file__).resolve().parent
 INSTRUCTOR = ROOT / "instructor"
-ZMQ_ENV = "KINLIB_MESHCAT_ZMQ_URL"
-WEB_ENV = "KINLIB_MESHCAT_WEB_URL"
-PID_ENV = "KINLIB_MESHCAT_SERVER_PID"
-START_TIMEOUT = 30.0
 
 _state: dict = {}
-
-
-def _start_server() -> ViewerServer:
-    log = tempfile.NamedTemporaryFile(prefix="kinlib-meshcat-", suffix=".log", delete=False)
-    log.close()
-    try:
-        return start_server(log=log.name, timeout=START_TIMEOUT)
-    except Exception:
-        os.unlink(log.name)
-        raise
 
 
 def _hypothesis_profile() -> None:
@@ -87,18 +66,10 @@ os.replace(folder + "/rc.tmp", folder + "/rc")
 def pytest_configure(config):
     _hypothesis_profile()
     if hasattr(config, "workerinput"):
-        return  # an xdist worker: the controller started the server and made the folder
+        return  # an xdist worker: the controller made the folder
     if not os.environ.get(SITE_ENV):
         _state["site_folder"] = tempfile.mkdtemp(prefix="kinlib-site-")
         os.environ[SITE_ENV] = _state["site_folder"]
-    if os.environ.get(ZMQ_ENV):
-        return  # a server is given
-    server = _start_server()
-    _state.update(server=server,
-                  saved={k: os.environ.get(k) for k in (ZMQ_ENV, WEB_ENV, PID_ENV)})
-    os.environ[ZMQ_ENV] = server.zmq_url
-    os.environ[WEB_ENV] = server.web_url
-    os.environ[PID_ENV] = str(server.pid)
 
 
 def _start_site_build(jobs: int) -> None:
@@ -112,7 +83,7 @@ def _start_site_build(jobs: int) -> None:
         return  # another process of the session started it
     proc = subprocess.Popen([sys.executable, "-c", SITE_BUILD, folder, str(jobs)],
                             stdin=subprocess.DEVNULL, start_new_session=True,
-                            cwd=os.path.dirname(__file__), preexec_fn=_die_with(os.getpid()))
+                            cwd=os.path.dirname(__file__), preexec_fn=die_with(os.getpid()))
     _state["site_build"] = proc
 
 
@@ -183,16 +154,3 @@ def pytest_unconfigure(config):
     if folder is not None:
         shutil.rmtree(folder, ignore_errors=True)
         os.environ.pop(SITE_ENV, None)
-    server = _state.pop("server", None)
-    if server is None:
-        return
-    server.stop()
-    for key, value in _state.pop("saved").items():
-        if value is None:
-            os.environ.pop(key, None)
-        else:
-            os.environ[key] = value
-    try:
-        os.unlink(server.log)
-    except OSError:
-        pass

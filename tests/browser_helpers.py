@@ -135,7 +135,7 @@ def settled(shoot, tries: int = 20) -> bytes:
 
 
 def assert_robot_drawn(frame_el, what: str, shot) -> bytes:
-    """The meshcat viewer in iframe ``frame_el`` draws a robot: at least ``AXES_SEEN``
+    """The viewer ``frame_el`` (a kinlib scene element) draws a robot: at least ``AXES_SEEN``
     filled joint-axis pixels once the picture has settled. The picture is written to
     ``shot`` and returned."""
     shoot = element_shooter(frame_el)
@@ -147,14 +147,19 @@ def assert_robot_drawn(frame_el, what: str, shot) -> bytes:
     return png
 
 
-def assert_removal_empties(frame_el, drawn: bytes, scene_path: str, what: str,
+#: in the page: delete a path from the meshcat viewer of a kinlib scene element (the
+#: ``.kinlib-scene`` div of a notebook widget or of an exported page)
+DELETE_IN_VIEWER = "(e, p) => e.kinlibScene.viewer.handle_command({type: 'delete', path: p})"
+
+
+def assert_removal_empties(scene_el, drawn: bytes, scene_path: str, what: str,
                            shot) -> tuple[int, int]:
     """The control for :func:`assert_robot_drawn`: delete ``scene_path`` in that same
-    viewer; at most ``EMPTY`` joint-axis pixels may be left and at least ``ROBOT`` pixels
-    must have changed from the ``drawn`` picture. Returns (pixels left, pixels changed)."""
-    frame = frame_el.element_handle().content_frame()
-    frame.evaluate(f"() => viewer.handle_command({{type: 'delete', path: '{scene_path}'}})")
-    png, empty = wait_for_mask(element_shooter(frame_el), solid_axes,
+    viewer (in the browser only); at most ``EMPTY`` joint-axis pixels may be left and at
+    least ``ROBOT`` pixels must have changed from the ``drawn`` picture. Returns (pixels
+    left, pixels changed)."""
+    scene_el.evaluate(DELETE_IN_VIEWER, scene_path)
+    png, empty = wait_for_mask(element_shooter(scene_el), solid_axes,
                                lambda m: m.sum() <= EMPTY)
     shot.write_bytes(png)
     assert empty.sum() <= EMPTY, f"{what}: {empty.sum()} joint-axis pixels with the robot " \

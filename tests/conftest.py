@@ -1,5 +1,5 @@
-"""Shared fixtures: the visualizer tests' prefixes and the browser tests' Chromium (the
-meshcat server and the course site: ../conftest.py)."""
+"""Shared fixtures: the visualizer tests' visualizers and the browser tests' Chromium (the
+course site: ../conftest.py)."""
 
 import uuid
 
@@ -19,7 +19,7 @@ endsolid t
 
 @pytest.fixture
 def make_viz(tmp_path):
-    """Build visualizers on fresh prefixes; delete them from the shared scene afterwards."""
+    """Build visualizers on fresh prefixes; close their scene widgets afterwards."""
     (tmp_path / "tri.stl").write_text(STL)
     made = []
 
@@ -34,7 +34,7 @@ def make_viz(tmp_path):
 
     yield make
     for v in made:
-        v.delete()
+        v.vis.close()
 
 
 @pytest.fixture(scope="session")

@@ -4,12 +4,13 @@
 with every Jupyter directory (config, runtime, settings, workspaces, IPython) in a
 temporary folder, a random token, a copy of the notebooks (the run saves nothing into the
 repository), notebook windowing off (every cell stays in the page, so it can be read), and
-no news or update checks (nothing from the network). Kernels get their own meshcat servers,
-as in class: the variables naming the test session's server are removed.
+no news or update checks (nothing from the network). ``base_url`` serves it under a path,
+as a JupyterHub serves ``/user/NAME/``; ``app="notebook"`` starts Jupyter Notebook 7
+instead of JupyterLab.
 
 The server asks Linux to SIGTERM it when the test process dies, however it dies (a
 SIGTERMed server shuts its kernels down). Every process the server starts inherits
-``KINLIB_LAB_RUN=<random marker>``: the kernels, and through them their meshcat servers.
+``KINLIB_LAB_RUN=<random marker>``: the kernels and anything they start.
 :meth:`Lab.stop` shuts the server down through its REST API (which shuts the kernels
 down), then signals its process group, and finally kills whatever still carries the
 marker: :func:`marked_processes` must be empty afterwards, and the tests check that it is,
@@ -31,12 +32,9 @@ import urllib.error
 import urllib.request
 from pathlib import Path
 
-from kinlib._viewer_server import _die_with
-from kinlib.site import SESSION_ENV
-from kinlib.viz import STATIC_ENV
+from kinlib._process import die_with
 
 MARK = "KINLIB_LAB_RUN"
-SESSION_KEYS = SESSION_ENV + (STATIC_ENV,)  # the kernels draw live, on servers of their own
 SETTINGS = {
     # every cell in the DOM (the default windowing drops cells scrolled out of view)
     "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {"windowingMode": "none"},
@@ -74,7 +72,12 @@ def marked_processes(marker: str) -> list[int]:
 class Lab:
     """A JupyterLab server over a copy of ``notebooks`` (a folder), rooted in ``work``."""
 
-    def __init__(self, notebooks: Path, work: Path, start_timeout: float = 60.0):
+    def __init__(self, notebooks: Path, work: Path, start_timeout: float = 60.0, *,
+                 base_url: str = "/", app: str = "lab"):
+        if app not in ("lab", "notebook"):
+            raise ValueError(f"app: 'lab' or 'notebook', got {app!r}")
+        self.app = app
+        self.base_url = "/" + base_url.strip("/") + "/" if base_url.strip("/") else "/"
         self.work = Path(work)
         self.root = self.work / "notebooks"
         self.marker = secrets.token_hex(8)
@@ -87,14 +90,19 @@ class Lab:
         self._start(start_timeout)
 
     @property
-    def base(self) -> str:
+    def origin(self) -> str:
         return f"http://127.0.0.1:{self.port}"
+
+    @property
+    def base(self) -> str:
+        """The server's root URL, with its base path (no trailing slash)."""
+        return f"{self.origin}{self.base_url.rstrip('/')}"
 
     def url(self, path: str) -> str:
         return f"{self.base}/{path.lstrip('/')}?token={self.token}"
 
     def _env(self) -> dict:
-        env = {k: v for k, v in os.environ.items() if k not in SESSION_KEYS}
+        env = dict(os.environ)
         dirs = {"JUPYTER_CONFIG_DIR": "config", "JUPYTER_RUNTIME_DIR": "runtime",
                 "JUPYTERLAB_SETTINGS_DIR": "settings", "JUPYTERLAB_WORKSPACES_DIR": "workspaces",
                 "IPYTHONDIR": "ipython", "MPLCONFIGDIR": "matplotlib"}
@@ -112,18 +120,20 @@ class Lab:
             path = Path(env["JUPYTERLAB_SETTINGS_DIR"]) / name
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text(json.dumps(values))
-        cmd = [sys.executable, "-m", "jupyter", "lab", "--no-browser",
+        cmd = [sys.executable, "-m", "jupyter", self.app, "--no-browser",
                f"--port={self.port}", "--ServerApp.port_retries=0", "--ServerApp.ip=127.0.0.1",
                f"--IdentityProvider.token={self.token}",
                f"--ServerApp.root_dir={self.root}",
                "--LabApp.news_url=", "--ServerApp.open_browser=False",
-               "--LabApp.expose_app_in_browser=True"]
+               f"--ServerApp.base_url={self.base_url}"]
+        if self.app == "lab":
+            cmd.append("--LabApp.expose_app_in_browser=True")
         if os.getuid() == 0:
             cmd.append("--allow-root")
         with open(self.log, "wb") as log:
             self.proc = subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
                                          stdin=subprocess.DEVNULL, start_new_session=True,
-                                         cwd=self.work, preexec_fn=_die_with(os.getpid()))
+                                         cwd=self.work, preexec_fn=die_with(os.getpid()))
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             if self.proc.poll() is not None:
@@ -149,7 +159,7 @@ class Lab:
         return self.api("GET", "api/kernels")
 
     def stop(self, timeout: float = 20.0) -> list[int]:
-        """Stop the server, its kernels and their meshcat servers; the pids that needed
+        """Stop the server and its kernels (and what they started); the pids that needed
         SIGKILL at the end (an empty list when everything shut down by itself)."""
         if self.proc is not None and self.proc.poll() is None:
             try:
@@ -172,7 +182,7 @@ class Lab:
         killed = []
         deadline = time.monotonic() + 10.0
         while marked_processes(self.marker) and time.monotonic() < deadline:
-            time.sleep(0.2)  # kernels and meshcat servers shutting down
+            time.sleep(0.2)  # kernels shutting down
         for pid in marked_processes(self.marker):
             try:
                 os.kill(pid, signal.SIGKILL)

@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from test_viewer_server import wait_gone
+from processes import wait_gone
 
 from kinlib.grade._sandbox import Worker, WorkerDied, WorkerTimeout
 from kinlib.grade._wire import Odd, WireError, decode, dumps, encode, loads

@@ -11,7 +11,7 @@ count; afterwards the notebook is closed and its kernel shut down. Then:
   saves it;
 - every exercise's check ran, in order, and says "not answered yet" (the blank student
   edition runs top to bottom: nothing depends on an answer);
-- the notebooks that show meshcat viewers (08, 09, 11) show them, and each viewer draws a
+- the notebooks that show 3-D viewers (08, 09, 11) show them, and each viewer draws a
   robot: at least ``AXIS_SEEN`` pixels of kinlib's orange joint axes; the control removes
   the robot from that same viewer and the count must fall to ``EMPTY`` or below;
 - sliders are rendered where the notebook makes them (04: the Euler-rate determinant;
@@ -21,7 +21,7 @@ count; afterwards the notebook is closed and its kernel shut down. Then:
 
 Screenshots of every notebook go to pytest's ``tmp_path``; with
 ``KINLIB_SCREENSHOTS=DIR`` (``make screenshots``), the two the README shows go to ``DIR``.
-The module fixture stops the server, its kernels and their meshcat servers even when a
+The module fixture stops the server and its kernels even when a
 test fails, and checks that no process it started is left.
 """
 
@@ -174,8 +174,9 @@ def error_outputs(nb: dict) -> list[str]:
 
 
 def viewer_frames(page):
+    """The 3-D viewers (kinlib scene widgets) of the open notebook."""
     return page.locator(".jp-NotebookPanel:not(.lm-mod-hidden) .jp-OutputArea-output "
-                        "iframe[src*='/static/']")
+                        ".kinlib-scene")
 
 
 def drag_slider(page, slider, dx: float) -> None:
@@ -305,7 +306,7 @@ def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path):
         frames = viewer_frames(page)
         expected = "some" if name in VIEWERS else "none"
         assert (frames.count() > 0) == (name in VIEWERS), \
-            f"{name}: {frames.count()} meshcat viewers, expected {expected}"
+            f"{name}: {frames.count()} 3-D viewers, expected {expected}"
         sliders = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden) .widget-slider")
         assert sliders.count() == SLIDERS.get(name, 0), \
             f"{name}: {sliders.count()} sliders rendered, expected {SLIDERS.get(name, 0)}"

@@ -163,14 +163,29 @@ def test_a_small_site_is_built_from_scratch_and_rebuilt(tmp_path):
     _notebook(folder, "01_small", [
         nbformat.v4.new_markdown_cell("# 01 · Small\n\n**Learning goals.** After this "
                                       "notebook you can\n\n1. add $1 + 1$."),
-        nbformat.v4.new_code_cell("import os\nprint(os.environ.get('KINLIB_STATIC_SCENES'),"
-                                  " os.environ.get('KINLIB_MESHCAT_ZMQ_URL'))")])
+        nbformat.v4.new_code_cell("print(1 + 1)")])
+    _notebook(folder, "02_scenes", [
+        nbformat.v4.new_markdown_cell("# 02 · Scenes"),
+        nbformat.v4.new_code_cell("from kinlib.robots import planar_2r\n"
+                                  "from kinlib.viz import RobotVisualizer\n"
+                                  "a = RobotVisualizer(planar_2r(1, 1), prefix='a')\n"
+                                  "a.jupyter_cell(height=222)"),
+        nbformat.v4.new_code_cell("b = RobotVisualizer(planar_2r(1, 2), prefix='b')\n"
+                                  "b.jupyter_cell(height=333)")])
     out = tmp_path / "site"
     built = build_site(out, folder, log=lambda _: None)  # notebook -> its build time
-    assert list(built) == ["01_small"]
+    assert list(built) == ["01_small", "02_scenes"]
     page = (out / "01_small.html").read_text()
-    assert "1 None" in page  # static scenes on, the test session's server hidden
+    assert "<pre>2\n</pre>" in page
     assert '<a href="index.html">Course outline</a>' in page
+    assert "meshcat" not in page  # no scene, no viewer
+    scenes = (out / "02_scenes.html").read_text()
+    assert scenes.count('class="kl-scene-static"') == 2  # each from its saved widget state
+    assert 'min-height: 222px' in scenes and 'min-height: 333px' in scenes
+    assert scenes.count('<script src="_static/meshcat.min.js"></script>') == 1  # once a page
+    assert (out / "_static" / "meshcat.min.js").stat().st_size > 500_000
+    assert "kinlibMountScene" in (out / "_static" / "kinlib-scene.js").read_text()
+    assert len(scenes) - len(page) < 50_000  # the bundle is a shared file, not inline
     (out / "stale.html").write_text("old")
     build_site(out, folder, log=lambda _: None)  # a previous build is replaced
     assert not (out / "stale.html").exists() and (out / "01_small.html").exists()

@@ -1,13 +1,13 @@
-"""kinlib.viz against the session's meshcat server (started by the root conftest.py).
+"""kinlib.viz: what a visualizer puts in its scene widget.
 
 Expected values come from ``robot.link_poses`` and the joints' data, never from the
-visualizer's own helpers; what the server really holds is read back from its scene
-(``static_html`` replays every stored command as base64 msgpack).
+visualizer's own helpers; what the widget really holds is read back from the state it
+sends to the browser (``Scene.get_state()``: meshcat's msgpack commands and the pose
+buffer), and what an exported page holds from the page itself.
 """
 
 import base64
-import html
-import os
+import json
 import re
 import uuid
 
@@ -18,9 +18,8 @@ import umsgpack
 from kinlib import KinlibError, load_urdf, matrix_from_quat, rotx, transform
 from kinlib.holonomic import base_pose
 from kinlib.robots import autorob_test_robot, puma560
-from kinlib.viz import STATIC_ENV, RobotVisualizer
+from kinlib.viz import RobotVisualizer, Scene
 
-ZMQ_ENV, WEB_ENV = "KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL"
 EY = np.array([0.0, 1.0, 0.0])
 
 SHAPES_URDF = """<?xml version="1.0"?>
@@ -63,16 +62,32 @@ ROBOTS = {"puma560": puma560, "autorob": autorob_test_robot,
           "shapes": lambda: load_urdf(SHAPES_URDF)}
 
 
+def decoded(commands, paths, poses):
+    """Scene commands as dicts with 'type' and 'path' (meshcat's msgpack decoded), then
+    one ``set_transform`` per pose (column-major 'matrix', as meshcat sends it)."""
+    out = [umsgpack.unpackb(bytes(c)) for c in commands]
+    mats = np.frombuffer(bytes(poses), dtype=np.float32).reshape(-1, 16)
+    assert len(mats) == len(paths), (len(mats), len(paths))
+    out += [{"type": "set_transform", "path": p, "matrix": m.astype(float).tolist()}
+            for p, m in zip(paths, mats, strict=True)]
+    return out
+
+
 def page_commands(page):
-    """Every command a static meshcat page replays, decoded: dicts with 'type' and 'path'."""
-    blobs = re.findall(r"fetch\(\"data:application/octet-binary;base64,([A-Za-z0-9+/=]+)\"\)",
-                       page)
-    return [umsgpack.unpackb(base64.b64decode(b)) for b in blobs]
+    """Every command the scenes of an exported page replay (``kl-scene-static`` holders)."""
+    found = []
+    for text in re.findall(r'<div class="kl-scene-static"[^>]*><script type="application/json">'
+                           r"(.*?)</script></div>", page, re.S):
+        data = json.loads(text)
+        found += decoded([base64.b64decode(c) for c in data["commands"]], data["paths"],
+                         base64.b64decode(data["poses"]))
+    return found
 
 
 def server_commands(viz):
-    """Every command the server holds (see :func:`page_commands`)."""
-    return page_commands(viz.static_html())
+    """Every command the widget state of ``viz``'s scene holds: what the browser gets."""
+    state = viz.vis.get_state()
+    return decoded(state["_commands"], state["_pose_paths"], state["_poses"])
 
 
 def column_major(matrix):
@@ -85,11 +100,6 @@ def random_q(robot, seed):
 
 
 BASE = base_pose(0.4, -0.3, 0.9) @ transform(rotx(0.3), [0.0, 0.0, 0.2])  # tilted too
-
-
-def test_the_session_server_is_configured():
-    assert os.environ.get(ZMQ_ENV, "").startswith("tcp://")
-    assert os.environ.get(WEB_ENV, "").startswith("http")
 
 
 @pytest.mark.parametrize("name", ROBOTS)
@@ -292,38 +302,37 @@ def test_animate_validates(make_viz):
 
 def test_static_html_is_self_contained(make_viz, tmp_path):
     viz = make_viz(puma560())
-    html = viz.static_html()
-    assert len(html) > 100_000
-    assert "MeshCat.Viewer" in html and "handle_command_bytearray" in html
-    assert "http://" not in html.split("<script>")[0]  # nothing fetched from the server
+    viz.set_configuration(viz.robot.poses["ready"])
+    page = viz.static_html()
+    assert len(page) > 500_000  # the meshcat bundle is inline
+    assert "MeshCat" in page and "kinlibStaticScenes(MeshCat, document)" in page
+    assert not re.findall(r'(?:src|href)="https?:', page)  # nothing fetched
+    assert page_commands(page) == server_commands(viz)  # the scene as it is now
     viz.save_html(tmp_path / "puma.html")
-    assert (tmp_path / "puma.html").read_text(encoding="utf-8") == html
-    assert viz.url() == os.environ[WEB_ENV]
-    assert viz.url() in viz.jupyter_cell().data
+    assert (tmp_path / "puma.html").read_text(encoding="utf-8") == page
 
 
-def test_snapshot_embeds_the_current_scene(make_viz, monkeypatch):
+def test_jupyter_cell_is_the_live_scene_and_snapshot_a_frozen_copy(make_viz):
     viz = make_viz(puma560())
     viz.set_configuration(viz.robot.poses["ready"])
-    cell = viz.snapshot(height=321)
-    m = re.fullmatch(r'<div class="kinlib-scene"><iframe srcdoc="([^"]*)" style="width: 100%; '
-                     r'height: 321px; border: none"></iframe></div>', cell.data)
-    assert m, cell.data[:300]
-    page = html.unescape(m.group(1))
-    assert "MeshCat.Viewer" in page and viz.url() not in page
-    ours = {c["path"].lower(): column_major(c["matrix"]) for c in page_commands(page)
-            if c["type"] == "set_transform" and f"/{viz.prefix}/" in c["path"].lower()}
-    expected = viz.scene_transforms(viz.robot.poses["ready"])
-    assert set(ours) == set(expected)
-    for path, M in expected.items():
-        np.testing.assert_allclose(ours[path], M, atol=1e-12)
-
-    monkeypatch.delenv(STATIC_ENV, raising=False)
-    assert viz.url() in viz.jupyter_cell(height=300).data  # live
-    monkeypatch.setenv(STATIC_ENV, "1")
-    static = viz.jupyter_cell(height=300).data
-    assert static.startswith('<div class="kinlib-scene"><iframe srcdoc=')
-    assert viz.url() not in static
+    cell = viz.jupyter_cell(height=300)
+    assert cell is viz.vis and cell.height == 300
+    bundle = cell._repr_mimebundle_()
+    assert bundle[0]["application/vnd.jupyter.widget-view+json"]["model_id"] == cell.model_id
+    snap = viz.snapshot(height=321)
+    assert isinstance(snap, Scene) and snap is not viz.vis and snap.height == 321
+    assert snap._bundle is viz.vis._bundle  # one copy of the meshcat bundle per kernel
+    at_ready = server_commands(viz)
+    snap_state = snap.get_state()
+    assert decoded(snap_state["_commands"], snap_state["_pose_paths"],
+                   snap_state["_poses"]) == at_ready
+    viz.set_configuration(np.zeros(6))  # the live scene follows, the snapshot does not
+    assert server_commands(viz) != at_ready
+    snap_state = snap.get_state()
+    assert decoded(snap_state["_commands"], snap_state["_pose_paths"],
+                   snap_state["_poses"]) == at_ready
+    with pytest.raises(KinlibError, match="frozen"):
+        snap["x"].set_object(__import__("meshcat.geometry").geometry.Box([1, 1, 1]))
     for bad in (0, -5, 2.5, "400", True, None):
         with pytest.raises(KinlibError, match="height"):
             viz.snapshot(height=bad)
@@ -332,24 +341,32 @@ def test_snapshot_embeds_the_current_scene(make_viz, monkeypatch):
 
 
 def test_same_prefix_replaces_the_robot(make_viz):
+    """Re-running a cell: a new visualizer of the same prefix closes the old scene widget
+    (nothing left behind in the kernel); in one shared scene it redraws in place."""
     prefix = f"test_{uuid.uuid4().hex[:8]}"
     first = make_viz(puma560(), prefix=prefix)
+    again = make_viz(puma560(), prefix=prefix)
+    assert first.vis.comm is None and again.vis.comm is not None  # the old widget closed
     root = f"/meshcat/{prefix}/"
+    shared = make_viz(puma560(), prefix="shared_" + prefix)
 
     def drawn():
-        return sorted(c["path"] for c in server_commands(first)
+        return sorted(c["path"] for c in server_commands(shared)
                       if c["type"] == "set_object" and c["path"].startswith(root))
 
+    in_shared = RobotVisualizer(puma560(), prefix=prefix, scene=shared.vis)
     puma_objects = drawn()
     assert f"{root}links/link6/origin" in puma_objects
-    again = make_viz(puma560(), prefix=prefix)
+    RobotVisualizer(puma560(), prefix=prefix, scene=shared.vis)
     assert drawn() == puma_objects  # same picture, no duplicates
-    assert set(again.scene_transforms(np.zeros(6))) == set(first.scene_transforms(np.zeros(6)))
-    make_viz(autorob_test_robot(), prefix=prefix)
+    assert set(in_shared.scene_transforms(np.zeros(6))) == set(
+        again.scene_transforms(np.zeros(6)))
+    RobotVisualizer(autorob_test_robot(), prefix=prefix, scene=shared.vis)
     now = drawn()
     assert f"{root}links/link6/origin" not in now  # the PUMA was deleted, not kept
     assert f"{root}links/link4/origin" in now
     assert not any("link0" in p or "link5" in p or "link6" in p for p in now)
+    assert shared.vis.comm is not None  # drawing into a scene never closes it
 
 
 def test_bad_constructor_arguments():
@@ -361,10 +378,5 @@ def test_bad_constructor_arguments():
         RobotVisualizer(puma560(), link_radius=-1.0)
     with pytest.raises(KinlibError, match="color"):
         RobotVisualizer(puma560(), color="magenta")
-
-
-def test_unreachable_server_is_a_clear_error():
-    with pytest.raises(KinlibError, match="no meshcat server"):
-        from kinlib.viz._scene import connect
-
-        connect("tcp://127.0.0.1:1", timeout=0.3)
+    with pytest.raises(KinlibError, match="scene"):
+        RobotVisualizer(puma560(), scene="a scene")

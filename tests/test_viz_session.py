@@ -1,28 +1,52 @@
-"""kinlib.viz stays out of ``import kinlib``; the session's meshcat server is the right one."""
+"""kinlib.viz stays out of ``import kinlib``, and a visualizer needs no server: it starts
+no process and listens on no port (the scene goes over the notebook's own connection)."""
 
 import os
 import subprocess
 import sys
+import textwrap
 
 import pytest
-
-ZMQ_ENV, WEB_ENV, PID_ENV = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL",
-                             "KINLIB_MESHCAT_SERVER_PID")
 
 
 def test_import_kinlib_does_not_load_meshcat_or_widgets():
     code = ("import sys, kinlib, kinlib.holonomic, kinlib.robots\n"
-            "heavy = ('meshcat', 'ipywidgets', 'kinlib.viz', 'zmq')\n"
+            "heavy = ('meshcat', 'ipywidgets', 'anywidget', 'kinlib.viz', 'zmq')\n"
             "bad = [m for m in heavy if m in sys.modules]\n"
             "assert not bad, bad\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
 
 
-def _listening_ports(pid):
+PROBE = textwrap.dedent('''
+    import os, socket, sys
+    sys.path.insert(0, sys.argv[1])
+    from test_viz_session import listening_ports, children
+    control = len(sys.argv) > 2
+    if control:  # what the check must catch: a process that listens and has a child
+        server = socket.socket(); server.bind(("127.0.0.1", 0)); server.listen()
+        import subprocess
+        kid = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)"])
+    from kinlib.robots import puma560
+    from kinlib.viz import RobotVisualizer, joint_panel
+    viz = RobotVisualizer(puma560(), frames=True)
+    viz.set_configuration(puma560().poses["ready"])
+    viz.animate([puma560().poses["zero"], puma560().poses["ready"]])
+    viz.jupyter_cell(); viz.snapshot(); joint_panel(viz)
+    print(sorted(listening_ports(os.getpid())), len(children()))
+    if control:
+        kid.kill()
+''')
+
+
+def listening_ports(pid) -> set[int]:
+    """The TCP ports process ``pid`` listens on (its sockets in /proc/net/tcp*)."""
     inodes = set()
     for fd in os.listdir(f"/proc/{pid}/fd"):
-        target = os.readlink(f"/proc/{pid}/fd/{fd}")
+        try:
+            target = os.readlink(f"/proc/{pid}/fd/{fd}")
+        except OSError:
+            continue
         if target.startswith("socket:["):
             inodes.add(target[8:-1])
     ports = set()
@@ -35,15 +59,25 @@ def _listening_ports(pid):
     return ports
 
 
-def test_session_server_is_alive_and_is_the_one_in_the_env():
-    pid = os.environ.get(PID_ENV)
-    if pid is None:
-        pytest.skip(f"{ZMQ_ENV} was given from outside; conftest started no server")
-    if not os.path.isdir("/proc"):
-        pytest.skip("needs /proc (Linux)")
-    with open(f"/proc/{pid}/cmdline", "rb") as fh:
-        assert b"meshcat.servers.zmqserver" in fh.read()
-    assert os.getpgid(int(pid)) == int(pid)  # its own process group: killed as one
-    port = int(os.environ[ZMQ_ENV].rsplit(":", 1)[1])
-    web_port = int(os.environ[WEB_ENV].split(":")[2].split("/")[0])
-    assert {port, web_port} <= _listening_ports(pid)
+def children() -> list[str]:
+    """This process's child processes."""
+    kids = []
+    for task in os.listdir("/proc/self/task"):
+        with open(f"/proc/self/task/{task}/children") as fh:
+            kids += fh.read().split()
+    return kids
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc"), reason="needs /proc (Linux)")
+@pytest.mark.parametrize("control", [False, True])
+def test_a_visualizer_starts_no_process_and_listens_on_no_port(control):
+    here = os.path.dirname(__file__)
+    args = [sys.executable, "-c", PROBE, here] + (["control"] if control else [])
+    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    ports, kids = done.stdout.strip().splitlines()[-1].rsplit(" ", 1)
+    if control:
+        assert ports != "[]" and kids == "1", done.stdout
+    else:
+        assert (ports, kids) == ("[]", "0"), done.stdout
+        assert "You can open the visualizer" not in done.stdout + done.stderr

@@ -26,7 +26,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .._viewer_server import _die_with
+from .._process import die_with as _die_with
 from ._wire import MAX_LINE, WireError, dumps, loads
 
 __all__ = ["Worker", "WorkerDied", "WorkerTimeout", "BLOCKED"]

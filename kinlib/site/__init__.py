@@ -10,9 +10,9 @@ straight from the files:
   to ``site/_static``; a LaTeX error is reported on the browser console, and the page marks
   ``<body data-mathjax="done">`` when typesetting ends;
 - matplotlib animations: ``to_jshtml`` players, inline JavaScript;
-- meshcat scenes: notebooks run with ``KINLIB_STATIC_SCENES=1``, so every
-  ``viz.jupyter_cell()`` is a self-contained snapshot (three.js and the scene in an iframe);
-  the kernels get their own meshcat servers (a test session's server is not used);
+- 3-D scenes (``kinlib.viz`` widgets): drawn from the notebook's saved widget state by
+  the meshcat viewer, orbitable; its bundle and kinlib's scene view are two files in
+  ``site/_static`` that every page shares;
 - ipywidgets: drawn from their saved state as plain HTML (:mod:`kinlib.site._widgets`).
 
 A cell that raises stops the build with the notebook's name and the cell's number.
@@ -21,7 +21,6 @@ A cell that raises stops the build with the notebook's name and the cell's numbe
 from __future__ import annotations
 
 import html
-import os
 import re
 import shutil
 import time
@@ -33,10 +32,10 @@ from multiprocessing import get_context
 from pathlib import Path
 
 from ..errors import KinlibError
-from ._widgets import freeze_widgets
+from ._widgets import SCENE_SCRIPTS, freeze_widgets
 
 __all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "export_page",
-           "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS", "SESSION_ENV"]
+           "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
 
 ROOT = Path(__file__).resolve().parents[2]
 TEMPLATES = Path(__file__).resolve().parent / "templates"
@@ -44,7 +43,6 @@ MARKER = ".kinlib-site"  # a directory holding it may be emptied by the next bui
 #: the two parts of the course: (title, first notebook number, last)
 PARTS = (("Part 1 · Spatial descriptions and orientation", 1, 7),
          ("Part 2 · Kinematic models, inverse and differential kinematics, planning", 8, 14))
-SESSION_ENV = ("KINLIB_MESHCAT_ZMQ_URL", "KINLIB_MESHCAT_WEB_URL", "KINLIB_MESHCAT_SERVER_PID")
 
 MATHJAX_VERSION = "3.2.2"
 #: sha256 of MathJax 3.2.2's es5/tex-svg-full.js (TeX input, SVG output: no web fonts)
@@ -142,35 +140,9 @@ def outline(notebooks: Path | str | None = None) -> list[PageInfo]:
     return pages
 
 
-class _Env:
-    """Environment of the kernels: static scenes (or live ones, ``static=False``), and no
-    test session's meshcat server."""
-
-    def __init__(self, static: bool = True):
-        self.static = static
-
-    def __enter__(self):
-        from ..viz import STATIC_ENV
-
-        keys = SESSION_ENV + (STATIC_ENV,)
-        self.saved = {k: os.environ.get(k) for k in keys}
-        for k in SESSION_ENV:
-            os.environ.pop(k, None)
-        os.environ[STATIC_ENV] = "1" if self.static else "0"
-        return self
-
-    def __exit__(self, *exc):
-        for k, v in self.saved.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
-
-
-def execute_notebook(path: Path | str, timeout: float = 600.0, *, static: bool = True):
+def execute_notebook(path: Path | str, timeout: float = 600.0):
     """Run the notebook at ``path`` in a fresh ``python3`` kernel (working directory: its
-    folder; static meshcat scenes unless ``static=False``, with a meshcat server of its
-    own) and return the executed node, widget state included. A cell that raises becomes a
+    folder) and return the executed node, widget state included. A cell that raises becomes a
     :class:`KinlibError` naming the notebook and the cell."""
     import nbformat
     from nbclient import NotebookClient
@@ -181,16 +153,15 @@ def execute_notebook(path: Path | str, timeout: float = 600.0, *, static: bool =
     client = NotebookClient(nb, timeout=timeout, kernel_name="python3",
                             resources={"metadata": {"path": str(path.parent)}},
                             store_widget_state=True)
-    with _Env(static):
-        try:
-            client.execute()
-        except CellTimeoutError as exc:
-            raise KinlibError(f"{path.name}: a cell ran longer than {timeout:g} s") from exc
-        except CellExecutionError as exc:
-            cell = next((i for i, c in enumerate(nb.cells) for o in c.get("outputs", [])
-                         if o.get("output_type") == "error"), None)
-            raise KinlibError(f"{path.name}: cell {cell} raised {exc.ename}: "
-                              f"{exc.evalue}") from None
+    try:
+        client.execute()
+    except CellTimeoutError as exc:
+        raise KinlibError(f"{path.name}: a cell ran longer than {timeout:g} s") from exc
+    except CellExecutionError as exc:
+        cell = next((i for i, c in enumerate(nb.cells) for o in c.get("outputs", [])
+                     if o.get("output_type") == "error"), None)
+        raise KinlibError(f"{path.name}: cell {cell} raised {exc.ename}: "
+                          f"{exc.evalue}") from None
     return nb
 
 
@@ -217,6 +188,9 @@ def export_page(nb, page: PageInfo, pages: list[PageInfo]) -> str:
                             "nav": _nav(pages, here)}}
     body, _ = exporter.from_notebook_node(nb, resources=resources)
     body = offline_players(body)
+    if 'class="kl-scene-static"' in body:  # the viewer, once per page, after the content
+        at = body.rindex("</body>")
+        body = body[:at] + SCENE_SCRIPTS + body[at:]
     leaks = re.findall(r'<(?:script|link)[^>]+(?:src|href)="(https?:[^"]+)"', body)
     if leaks:
         raise KinlibError(f"{page.name}: the page would load {leaks[0]} from the network")
@@ -293,6 +267,20 @@ def _copy_mathjax(out: Path, mathjax: Path | str | None) -> None:
         shutil.copy2(source.parent / "LICENSE", static / "MathJax-LICENSE")
 
 
+def _copy_viewer(out: Path) -> None:
+    """The meshcat bundle (as the meshcat package ships it, with its licence) and kinlib's
+    scene view, shared by every page's scenes."""
+    from ..viz._widget import BUNDLE_FILE, scene_js
+
+    static = out / "_static"
+    static.mkdir(exist_ok=True)
+    shutil.copy2(BUNDLE_FILE, static / "meshcat.min.js")
+    licence = BUNDLE_FILE.with_name(BUNDLE_FILE.name + ".LICENSE.txt")
+    if licence.exists():
+        shutil.copy2(licence, static / "meshcat.min.js.LICENSE.txt")
+    (static / "kinlib-scene.js").write_text(scene_js(), encoding="utf-8")
+
+
 def index_html(pages: list[PageInfo]) -> str:
     """The outline page: the two parts, each notebook's title, link and learning goals."""
     from nbconvert.filters.markdown import markdown2html_mistune
@@ -322,8 +310,8 @@ def index_html(pages: list[PageInfo]) -> str:
 <body>
 <h1>kinlib — robot kinematics, a course workbook</h1>
 <p>The course notebooks, executed, with their outputs: the derivations, the pictures, the
-animations and the 3-D robots (static snapshots here; live and interactive when you run the
-notebooks in JupyterLab with <code>make lab</code>).</p>
+animations and the 3-D robots (as the notebook left them, and you can orbit them; driven by
+sliders when you run the notebooks in JupyterLab with <code>make lab</code>).</p>
 {"".join(parts)}
 <footer>Built by <code>make site</code> (<code>python -m kinlib.site</code>) from the notebooks
 in <code>notebooks/</code>.</footer>
@@ -361,6 +349,7 @@ def build_site(out: Path | str = "site", notebooks: Path | str | None = None, *,
     out.mkdir(parents=True)
     (out / MARKER).write_text("built by python -m kinlib.site; emptied by the next build\n")
     _copy_mathjax(out, mathjax)
+    _copy_viewer(out)
     (out / "index.html").write_text(index_html(pages), encoding="utf-8")
     paths = [str(folder / f"{n}.ipynb") for n in chosen]
     seconds = {}

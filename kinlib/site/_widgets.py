@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import html
 
-__all__ = ["WIDGET_VIEW", "WIDGET_STATE", "render_widget", "freeze_widgets"]
+__all__ = ["WIDGET_VIEW", "WIDGET_STATE", "render_widget", "freeze_widgets", "scene_state",
+           "SCENE_SCRIPTS"]
 
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 WIDGET_STATE = "application/vnd.jupyter.widget-state+json"
@@ -48,6 +49,33 @@ def _output_html(output: dict) -> str:
     return f"<pre>{html.escape(''.join(data.get('text/plain', '')))}</pre>"
 
 
+#: what a page with 3-D scenes loads once, after its content (the files: ``_static/``)
+SCENE_SCRIPTS = ('<script src="_static/meshcat.min.js"></script>\n'
+                 '<script src="_static/kinlib-scene.js"></script>\n'
+                 '<script>kinlibStaticScenes(MeshCat, document);</script>\n')
+
+
+def scene_state(model: dict) -> dict:
+    """A saved kinlib scene widget (``model_name``, ``state``, ``buffers``) as the plain
+    scene :func:`kinlib.viz.static_page` draws: binary buffers put back in their places."""
+    import base64
+
+    state = dict(model.get("state", {}))
+    state["_commands"] = list(state.get("_commands", []))
+    for buf in model.get("buffers", []):
+        data = base64.b64decode(buf["data"]) if buf.get("encoding") == "base64" else b""
+        where = buf["path"]
+        if len(where) == 1:
+            state[where[0]] = data
+        elif len(where) == 2 and where[0] == "_commands":
+            state["_commands"][where[1]] = data
+    poses = state.get("_poses", b"")
+    return {"commands": [c if isinstance(c, bytes) else b"" for c in state["_commands"]],
+            "paths": list(state.get("_pose_paths", [])),
+            "poses": poses if isinstance(poses, bytes) else b"",
+            "height": int(state.get("height", 400))}
+
+
 def render_widget(model_id: str, models: dict, _depth: int = 0) -> str:
     """HTML for the widget ``model_id`` and its children, from saved widget ``models``
     (``{id: {"model_name": ..., "state": {...}}}``). Unknown widgets become their name."""
@@ -56,6 +84,10 @@ def render_widget(model_id: str, models: dict, _depth: int = 0) -> str:
         return "<span class=\"kl-widget\">[widget]</span>"
     name = model.get("model_name", "")
     state = model.get("state", {})
+    if state.get("_kinlib") == "scene":  # a 3-D scene: drawn live by the page's viewer
+        from ..viz._widget import scene_holder
+
+        return scene_holder(scene_state(model))
     desc = html.escape(str(state.get("description", "")))
     if name.endswith("SliderModel"):
         value = state.get("value", 0)
@@ -100,7 +132,10 @@ def freeze_widgets(nb) -> int:
                 continue
             model_id = data[WIDGET_VIEW].get("model_id", "")
             body = render_widget(model_id, models)
-            output["data"] = {"text/html": f"<div class=\"kl-frozen\">{NOTE}{body}</div>"}
+            if body.startswith('<div class="kl-scene-static"'):
+                output["data"] = {"text/html": body}  # orbitable: no "a picture" note
+            else:
+                output["data"] = {"text/html": f"<div class=\"kl-frozen\">{NOTE}{body}</div>"}
             output.get("metadata", {}).pop(WIDGET_VIEW, None)
             replaced += 1
     return replaced

@@ -1,25 +1,25 @@
-"""3-D views of kinlib robots in meshcat (three.js in the browser), and widget panels.
+"""3-D views of kinlib robots (meshcat's three.js viewer in a Jupyter widget), and panels.
 
-Not imported by ``import kinlib``: meshcat and ipywidgets load only when you ask::
+Not imported by ``import kinlib``: meshcat, anywidget and ipywidgets load only when asked::
 
     from kinlib.viz import RobotVisualizer, joint_panel
-    viz = RobotVisualizer(puma560())   # the server: $KINLIB_MESHCAT_ZMQ_URL or a new one
+    viz = RobotVisualizer(puma560())   # a new scene widget (no server, no port)
     viz.jupyter_cell()                 # the viewer inside the notebook
     joint_panel(viz)                   # sliders and holonomic-base buttons
-    viz.snapshot()                     # the scene now, self-contained (no server needed)
+    viz.snapshot()                     # the scene now, as a frozen copy
 
-The "new one" is this process's own server, shared by its visualizers and ended with the
-process even when the process is killed (a kernel restart leaves nothing behind). With
-``KINLIB_STATIC_SCENES=1`` in the environment, ``jupyter_cell()`` embeds a snapshot
-instead of the live viewer: set it when executing notebooks for export to HTML.
+The viewer is a widget (:class:`Scene`): its scene travels over the notebook's own
+connection to the kernel, so it works wherever Jupyter runs (JupyterHub, Binder, a remote
+kernel), and the notebook's saved widget state shows it again in exported pages.
 
 :class:`RobotVisualizer` draws each link as a cylinder from its parent's origin to its
 own, a sphere at every link origin, a short coloured cylinder on each joint axis, the
 URDF visuals (boxes, cylinders, spheres, meshes) and, if asked, frame triads.
 """
 
+from ._widget import Scene, SceneNode, static_page
 from .panel import BASE_MOVES, joint_panel, slider_bounds
-from .visualizer import LINK_COLOR, PRISMATIC_COLOR, REVOLUTE_COLOR, STATIC_ENV, RobotVisualizer
+from .visualizer import LINK_COLOR, PRISMATIC_COLOR, REVOLUTE_COLOR, RobotVisualizer
 
-__all__ = ["RobotVisualizer", "joint_panel", "slider_bounds", "BASE_MOVES", "LINK_COLOR",
-           "REVOLUTE_COLOR", "PRISMATIC_COLOR", "STATIC_ENV"]
+__all__ = ["RobotVisualizer", "Scene", "SceneNode", "static_page", "joint_panel",
+           "slider_bounds", "BASE_MOVES", "LINK_COLOR", "REVOLUTE_COLOR", "PRISMATIC_COLOR"]

@@ -1,34 +1,25 @@
-"""Small helpers of :class:`kinlib.viz.RobotVisualizer`: colours, server probe, mesh files.
+"""Small helpers of :class:`kinlib.viz.RobotVisualizer`: colours, materials, mesh files.
 
 meshcat is imported here (and only in :mod:`kinlib.viz`), with the warnings its import
-raises under current pyzmq (``zmq.eventloop.ioloop`` is deprecated) filtered locally.
+raises under current pyzmq (``zmq.eventloop.ioloop`` is deprecated: meshcat's package
+imports its server module, which kinlib never starts) filtered locally.
 """
 
 from __future__ import annotations
 
-import os
 import warnings
 from pathlib import Path
 
 import numpy as np
 
-from .._viewer_server import own_server
 from ..errors import KinlibError
 
 with warnings.catch_warnings():
     warnings.simplefilter("ignore", DeprecationWarning)
     warnings.simplefilter("ignore", ResourceWarning)
-    import meshcat
     import meshcat.geometry as mg
-    import zmq
 
-__all__ = ["color_int", "material", "connect", "mesh_geometry",
-           "resolve_mesh", "ZMQ_ENV", "WEB_ENV"]
-
-#: environment variable naming the meshcat server to use (set by the test session)
-ZMQ_ENV = "KINLIB_MESHCAT_ZMQ_URL"
-#: its web address, for browsers
-WEB_ENV = "KINLIB_MESHCAT_WEB_URL"
+__all__ = ["color_int", "material", "mesh_geometry", "resolve_mesh"]
 
 
 def color_int(color, name: str = "color") -> int:
@@ -66,42 +57,6 @@ def color_int(color, name: str = "color") -> int:
 def material(color, opacity: float = 1.0):
     """A meshcat Phong material of ``color`` (see :func:`color_int`)."""
     return mg.MeshPhongMaterial(color=color_int(color), opacity=float(opacity))
-
-
-def _probe(zmq_url: str, timeout: float) -> str:
-    """Ask the server at ``zmq_url`` for its web URL; a clear error if nobody answers."""
-    ctx = zmq.Context.instance()
-    sock = ctx.socket(zmq.REQ)
-    sock.setsockopt(zmq.LINGER, 0)
-    try:
-        sock.connect(zmq_url)
-        sock.send(b"url")
-        if not sock.poll(int(timeout * 1000)):
-            raise KinlibError(f"no meshcat server answers at {zmq_url!r} (waited {timeout} s); "
-                              "start one with `python -m meshcat.servers.zmqserver` or pass "
-                              "zmq_url=None to start one")
-        return sock.recv().decode("utf-8")
-    except zmq.ZMQError as exc:
-        raise KinlibError(f"cannot connect to a meshcat server at {zmq_url!r}: {exc}") from None
-    finally:
-        sock.close()
-
-
-def connect(zmq_url=None, timeout: float = 10.0):
-    """A ``meshcat.Visualizer``: at ``zmq_url``, else ``$KINLIB_MESHCAT_ZMQ_URL``, else
-    this process's own server (:func:`kinlib._viewer_server.own_server`: started on first
-    use, shared by all visualizers of the process, ended with the process even if it is
-    killed).
-    """
-    if zmq_url is None:
-        zmq_url = os.environ.get(ZMQ_ENV) or None
-    if zmq_url is None:
-        zmq_url = own_server().zmq_url
-    if not isinstance(zmq_url, str):
-        raise KinlibError(f"zmq_url: expected a string such as 'tcp://127.0.0.1:6000', "
-                          f"got {zmq_url!r}")
-    _probe(zmq_url, timeout)
-    return meshcat.Visualizer(zmq_url=zmq_url)
 
 
 _SCHEMES = ("package://", "file://", "model://")

@@ -1,4 +1,5 @@
-"""``RobotVisualizer``: a kinlib robot drawn in a meshcat viewer (three.js in the browser).
+"""``RobotVisualizer``: a kinlib robot drawn in a 3-D scene widget (meshcat's three.js
+viewer, reached through the notebook's own connection: see :mod:`kinlib.viz._widget`).
 
 The scene under ``/meshcat/<prefix>`` is flat, so every transform it sends is a pose in
 the world frame (meshcat's world is z-up, like kinlib's):
@@ -17,8 +18,8 @@ meshcat (three.js) cylinders lie along their local **y** axis; see
 
 from __future__ import annotations
 
-import html
-import os
+import weakref
+from typing import ClassVar
 
 import numpy as np
 
@@ -30,11 +31,9 @@ from ..transforms import check_transform, transform_inverse
 from . import _scene
 from ._geometry import axis_transforms, decompose, segment_transforms
 from ._scene import mg
+from ._widget import Scene, static_page
 
-__all__ = ["RobotVisualizer", "REVOLUTE_COLOR", "PRISMATIC_COLOR", "LINK_COLOR", "STATIC_ENV"]
-
-#: set to "1" to make :meth:`RobotVisualizer.jupyter_cell` embed static snapshots
-STATIC_ENV = "KINLIB_STATIC_SCENES"
+__all__ = ["RobotVisualizer", "REVOLUTE_COLOR", "PRISMATIC_COLOR", "LINK_COLOR"]
 
 LINK_COLOR = 0x3B7DD8
 REVOLUTE_COLOR = 0xE8A317
@@ -71,11 +70,12 @@ class RobotVisualizer:
     Parameters
     ----------
     robot : kinlib.Robot
-    zmq_url : str, optional
-        The meshcat server; default ``$KINLIB_MESHCAT_ZMQ_URL``, else a new server.
     prefix : str, optional
-        Scene path of this robot (default: the robot's name). It is deleted first, so
-        re-running a notebook cell redraws the same picture instead of adding a copy.
+        Scene path of this robot (default: the robot's name). A new visualizer of the
+        same prefix replaces the old one: re-running a notebook cell redraws the picture
+        (the old scene widget is closed) instead of adding a copy.
+    scene : kinlib.viz.Scene, optional
+        Draw into this scene (several robots in one viewer); default: a new scene.
     frames : bool
         Draw a frame triad (x red, y green, z blue) at every link origin.
     link_radius : float, optional
@@ -92,6 +92,8 @@ class RobotVisualizer:
         The configuration last sent (starts at 0, clipped into the joint limits).
     base : ndarray (4, 4)
         ``T_world_base``: where the robot's root link sits (starts at identity).
+    vis : kinlib.viz.Scene
+        The scene widget (``vis["path"].set_object(...)`` as in meshcat).
 
     Examples
     --------
@@ -101,7 +103,10 @@ class RobotVisualizer:
     >>> viz.jupyter_cell()                                      # doctest: +SKIP
     """
 
-    def __init__(self, robot, *, zmq_url=None, prefix=None, frames=False, link_radius=None,
+    #: prefix -> the scene a visualizer of that prefix made (closed when replaced)
+    _made: ClassVar[weakref.WeakValueDictionary] = weakref.WeakValueDictionary()
+
+    def __init__(self, robot, *, prefix=None, scene=None, frames=False, link_radius=None,
                  color=LINK_COLOR, mesh_dir=None):
         if not isinstance(robot, Robot):
             raise KinlibError(f"RobotVisualizer: expected a kinlib.Robot, got "
@@ -121,17 +126,26 @@ class RobotVisualizer:
         if r.ndim or r <= 0:
             raise KinlibError(f"link_radius: expected one positive number, got {link_radius!r}")
         self.link_radius = float(r)
+        if scene is not None and not isinstance(scene, Scene):
+            raise KinlibError(f"scene: expected a kinlib.viz.Scene, got {type(scene).__name__}")
         self.skipped_meshes = []
-        self.vis = _scene.connect(zmq_url)
+        if scene is None:
+            old = RobotVisualizer._made.get(self.prefix)
+            if old is not None:
+                old.close()  # the same cell run again: its old scene goes
+            scene = Scene()
+            RobotVisualizer._made[self.prefix] = scene
+        self.vis = scene
         self.node = self.vis[self.prefix]
         self._root = self.node.path.lower()
-        self.node.delete()
-        self._draw(frames, mesh_dir)
-        self.base = np.eye(4)
-        self.q = q0
-        self.set_configuration(q0)
-        # frame the robot: the camera looks at the origin from the front right, above
-        self.set_camera_position(max(reach, 0.1) * np.array([0.65, -0.8, 0.55]))
+        with self.vis.batch():
+            self.node.delete()
+            self._draw(frames, mesh_dir)
+            self.base = np.eye(4)
+            self.q = q0
+            self.set_configuration(q0)
+            # frame the robot: the camera looks at the origin from the front right, above
+            self.set_camera_position(max(reach, 0.1) * np.array([0.65, -0.8, 0.55]))
 
     # -- drawing --------------------------------------------------------------------------
     def _path(self, group: str, name: str) -> str:
@@ -224,9 +238,7 @@ class RobotVisualizer:
         """
         a = self._check_one_q(q)
         b = self._check_base(base)
-        transforms = self._world(a, b)
-        for path, T in transforms.items():
-            self.vis[path].set_transform(T)
+        self.vis.set_poses(self._world(a, b))
         self.q = np.array(a)
         self.base = np.array(b)
 
@@ -246,7 +258,7 @@ class RobotVisualizer:
         if rate.ndim or rate <= 0:
             raise KinlibError(f"fps: expected one positive number, got {fps!r}")
         b = self._check_base(base, batch=a.shape[:1])
-        anim = Animation(default_framerate=float(rate))
+        anim = Animation(default_framerate=float(rate))  # meshcat's own animation objects
         frames = list(range(a.shape[0]))
         for path, M in self._world(a, b).items():
             p, R, s = decompose(M)
@@ -272,48 +284,35 @@ class RobotVisualizer:
             "position", [float(p[0]), float(p[2]), float(-p[1])])
 
     def static_html(self) -> str:
-        """A self-contained HTML page of the server's current scene (no server needed)."""
-        return self.vis.static_html()
+        """A self-contained HTML page of the scene as it is now (three.js, meshcat and the
+        scene inline; about 1 MB), which needs no kernel and no network."""
+        return static_page([self.vis.state()], title=self.robot.name)
 
     def save_html(self, path) -> None:
         """Write :meth:`static_html` to ``path``."""
         with open(path, "w", encoding="utf-8") as fh:
             fh.write(self.static_html())
 
-    def url(self) -> str:
-        """The viewer's web address."""
-        return self.vis.url()
-
     def jupyter_cell(self, height: int = 400):
-        """The viewer embedded in a notebook cell (make it the cell's last expression).
-
-        Live: an iframe showing the server's viewer, which follows every later change.
-        When the environment variable ``KINLIB_STATIC_SCENES`` is ``1`` (set it when a
-        notebook is executed for export, e.g. to HTML), this returns :meth:`snapshot`
-        instead, so the exported page shows the scene without a server.
-        """
-        h = _height(height)
-        if os.environ.get(STATIC_ENV) == "1":
-            return self.snapshot(h)
-        return self.vis.jupyter_cell(height=h)
+        """The viewer in a notebook cell (make it the cell's last expression): the scene
+        widget, ``height`` pixels tall, which follows every later change. Saved with the
+        notebook's widget state, it shows again in an exported page."""
+        self.vis.height = _height(height)
+        return self.vis
 
     def snapshot(self, height: int = 400):
-        """The scene as it is now, self-contained: an ``IPython.display.HTML`` iframe.
+        """The scene as it is now, as a frozen copy (a widget that later changes do not
+        reach): for a picture that should stay, e.g. before the robot moves on."""
+        copy = self.vis.copy(frozen=True)
+        copy.height = _height(height)
+        return copy
 
-        The iframe holds :meth:`static_html` (three.js and the scene, animations
-        included; about 1 MB), so it renders in an exported notebook or a static web
-        page with no server and no network. Later changes to the scene do not reach it.
-        """
-        from IPython.display import HTML
-
-        page = html.escape(self.static_html(), quote=True)
-        return HTML(f'<div class="kinlib-scene"><iframe srcdoc="{page}" style="width: 100%; '
-                    f'height: {_height(height)}px; border: none"></iframe></div>')
+    def _repr_mimebundle_(self, **kwargs):
+        return self.vis._repr_mimebundle_(**kwargs)
 
     def delete(self) -> None:
         """Remove this robot from the scene."""
         self.node.delete()
 
     def __repr__(self) -> str:
-        return (f"RobotVisualizer({self.robot.name!r}, prefix={self.prefix!r}, "
-                f"url={self.url()!r})")
+        return f"RobotVisualizer({self.robot.name!r}, prefix={self.prefix!r})"
