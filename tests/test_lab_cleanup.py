@@ -4,8 +4,9 @@ itself is killed.
 Each case runs pytest in a subprocess on a small test file that starts a ``Lab``, runs a
 one-cell notebook that opens a 3-D viewer in the browser (so a kernel is running; the
 viewer widget starts no process of its own), records the pids that carry the run's marker,
-and then fails (``fail``) or waits to be SIGKILLed (``kill``). Afterwards no process may carry the marker and the port must be
-closed. The recorded pids are the control: the processes existed while the test ran.
+and then fails (``fail``) or waits to be SIGKILLed (``kill``). Afterwards no process may
+carry the marker and the port must be closed. The recorded pids are the control: the
+processes existed while the test ran.
 """
 
 from __future__ import annotations

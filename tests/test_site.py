@@ -10,38 +10,38 @@ in headless Chromium with all http(s) blocked and asserts:
 - the mathematics is typeset: MathJax finished, at least as many formulas as the
   notebook's Markdown has ``$…$``/``$$…$$`` pairs, no error node, and no raw TeX
   (``$`` or ``\\command``) left in the text;
-- the meshcat snapshots (08, 09, 11) draw their robot (filled joint-axis pixels and the
-  robot's names in the three.js scene; 10's carries its IK animation); removing the robot
-  in that same page empties the picture (the control);
+- the 3-D scenes (08, 09, 11), drawn from the notebooks' saved widget state, show their
+  robot (filled joint-axis pixels and the robot's names in the three.js scene; 11's
+  carries its IK animation, which plays); removing the robot in that same page empties the
+  picture (the control);
 - every matplotlib animation plays: *Next frame* shows another image and *Play* moves
   the frame counter;
-- the control for the snapshots: notebook 08 executed and exported *live* shows nothing
-  once its kernel and meshcat server are gone, and leaves no server running;
+- a scene can be orbited with the mouse, and it is the saved state that draws it: the
+  same page with the scene's saved commands removed shows no robot (the control);
 - sliders appear as disabled pictures of their state, with a note, and the outline page
   links every notebook, with its learning goals.
 """
 
 from __future__ import annotations
 
-import html
 import json
-import os
 import re
-import secrets
-import time
+import shutil
 from pathlib import Path
 
 import pytest
 from browser_helpers import (
     AXIS_SEEN,
     EMPTY,
+    STILL,
     assert_removal_empties,
     assert_robot_drawn,
     element_shooter,
     joint_axis_mask,
+    pixels_changed,
+    settled,
     wait_for_mask,
 )
-from lab_harness import MARK, marked_processes
 
 from kinlib.site import MARKER, outline
 
@@ -71,7 +71,8 @@ return {
     return out;
   })()
 }; }"""
-SCENE_NAMES = "() => { const n = []; viewer.scene.traverse(o => n.push(o.name)); return n; }"
+SCENE_NAMES = ("e => { const n = []; e.kinlibScene.viewer.scene.traverse(o => n.push(o.name));"
+               " return n; }")
 
 
 def math_pairs(name: str) -> int:
@@ -196,7 +197,7 @@ def test_page_renders_offline(site, offline_page, name, tmp_path):
         assert page.locator(".kl-widget-note").count() >= 1
 
     check_players(page, name)
-    scenes = page.locator(".kinlib-scene iframe")
+    scenes = page.locator(".kinlib-scene")
     assert scenes.count() == (1 if name in SCENES else 0), f"{name}: {scenes.count()} scenes"
     if name in SCENES:
         check_snapshot(scenes.first, name, tmp_path)
@@ -224,87 +225,83 @@ def check_players(page, name: str) -> None:
         page.locator(f"button[onclick='anim{anim}.pause_animation()']").click()
 
 
-def check_snapshot(frame_el, name: str, out: Path) -> None:
-    png = assert_robot_drawn(frame_el, f"{name}: the snapshot", out / "scene.png")
-    frame = frame_el.element_handle().content_frame()
-    names = set(frame.evaluate(SCENE_NAMES))
+def check_snapshot(scene_el, name: str, out: Path) -> None:
+    png = assert_robot_drawn(scene_el, f"{name}: the scene", out / "scene.png")
+    names = set(scene_el.evaluate(SCENE_NAMES))
     assert SCENES[name] <= names, f"{name}: missing {SCENES[name] - names} in the scene"
-    assert_removal_empties(frame_el, png, f"/meshcat/notebook{name[:2]}", name,
-                           out / "scene_emptied.png")
-    if name == "11_numerical_inverse_kinematics":  # the IK trajectory is in the snapshot
+    if name == "11_numerical_inverse_kinematics":  # the IK trajectory is in the page, playing
         from test_viz import page_commands
 
-        srcdoc = html.unescape(frame_el.get_attribute("srcdoc"))
-        kinds = {c["type"] for c in page_commands(srcdoc)}
+        kinds = {c["type"] for c in page_commands(scene_el.page.content())}
         assert "set_animation" in kinds, kinds
+        animator = "e => e.kinlibScene.viewer.animator"
+        duration = scene_el.evaluate(f"e => ({animator})(e).duration")
+        assert duration > 0, "no animation in the scene"
+        shots = []
+        for t in (0, duration):  # the trajectory's first and last frame differ
+            scene_el.evaluate(f"(e, t) => {{ const a = ({animator})(e); a.pause(); a.seek(t); }}",
+                              t)
+            shots.append(settled(element_shooter(scene_el)))
+        assert pixels_changed(*shots) >= 200, "the IK animation moves nothing"
+    assert_removal_empties(scene_el, png, f"/meshcat/notebook{name[:2]}", name,
+                           out / "scene_emptied.png")
 
 
-# --- the site's snapshot against a live export (moved here: it reads the site) ---
+# --- an exported scene, orbited; and the control without its saved state ---
 
-def export_live(name: str, marker: str) -> str:
-    """Execute notebook ``name`` in its own kernel with live scenes (its own meshcat server,
-    as in class) and export it to HTML with nbconvert's default template. The kernel and
-    what it starts carry ``marker`` in their environment (``lab_harness.marked_processes``
-    finds them, and only them, whatever else runs beside this test)."""
-    from nbconvert import HTMLExporter
-
-    from kinlib.site import execute_notebook
-
-    saved = os.environ.get(MARK)
-    os.environ[MARK] = marker
-    try:
-        nb = execute_notebook(NOTEBOOKS / f"{name}.ipynb", timeout=120, static=False)
-    finally:
-        if saved is None:
-            os.environ.pop(MARK)
-        else:
-            os.environ[MARK] = saved
-    body, _ = HTMLExporter().from_notebook_node(nb)
-    return body
-
-
-def open_scene(browser, page_file: Path, shot: Path, timeout: float = 15.0
-               ) -> tuple[int, list[str]]:
+def open_scene(browser, page_file: Path, shot: Path, timeout: float = 15.0,
+               orbit: bool = False) -> dict:
     """Open an exported page with all http(s) blocked and look at its first scene: the
-    joint-axis pixels of a screenshot, and the names in its three.js scene graph."""
+    joint-axis pixels of a screenshot, the names in its three.js scene graph, and (with
+    ``orbit``) how many pixels a mouse drag across it changes, beside how many change
+    between two screenshots of the untouched scene."""
     context = browser.new_context(viewport={"width": 1000, "height": 800})
+    requests = []
     try:
-        context.route(re.compile(r"^https?://"), lambda route: route.abort())
+        context.route(re.compile(r"^https?://"),
+                      lambda route: (requests.append(route.request.url), route.abort()))
         page = context.new_page()
         page.goto(page_file.as_uri())
-        frame_el = page.locator("iframe").first
-        frame_el.scroll_into_view_if_needed(timeout=15_000)
-        frame = frame_el.element_handle().content_frame()
-        png, mask = wait_for_mask(element_shooter(frame_el), joint_axis_mask,
-                                  lambda m: m.sum() >= AXIS_SEEN, timeout=timeout)
+        scene_el = page.locator(".kinlib-scene").first
+        scene_el.scroll_into_view_if_needed(timeout=15_000)
+        shoot = element_shooter(scene_el)
+        png, mask = wait_for_mask(shoot, joint_axis_mask, lambda m: m.sum() >= AXIS_SEEN,
+                                  timeout=timeout)
         shot.write_bytes(png)
-        count = int(mask.sum())
-        try:
-            names = frame.evaluate(SCENE_NAMES)
-        except Exception:  # no viewer in the frame (the control case)
-            names = []
-        return count, names
+        seen = {"axis": int(mask.sum()), "names": scene_el.evaluate(SCENE_NAMES),
+                "requests": requests}
+        if orbit:
+            still = settled(shoot)
+            seen["still"] = pixels_changed(still, shoot())
+            box = scene_el.bounding_box()
+            x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+            page.mouse.move(x, y)
+            page.mouse.down()
+            for k in range(1, 11):
+                page.mouse.move(x + 15 * k, y + 3 * k)
+            page.mouse.up()
+            moved = settled(shoot)
+            shot.with_name(shot.stem + "_orbited.png").write_bytes(moved)
+            seen["orbited"] = pixels_changed(still, moved)
+        return seen
     finally:
         context.close()
 
 
-def test_exported_notebook_shows_its_scene_without_a_server(browser, site, tmp_path):
-    """The site's page of notebook 08 (executed with ``KINLIB_STATIC_SCENES=1``) draws the
-    robot with all http blocked; the control, notebook 08 executed and exported live in its
-    own kernel, shows nothing once that kernel (and its meshcat server) is gone."""
-    marker = secrets.token_hex(8)
-    live = export_live("08_urdf_and_matrix_stack", marker)
-    deadline = time.monotonic() + 30  # the kernel's server ends as the kernel does
-    while (left := marked_processes(marker)) and time.monotonic() < deadline:
-        time.sleep(0.25)
-    assert not left, f"the live export left processes running (its meshcat server?): {left}"
-    static = (site / "08_urdf_and_matrix_stack.html").read_text(encoding="utf-8")
-    assert static.count('class="kinlib-scene"') >= 1 and 'class="kinlib-scene"' not in live
-    (tmp_path / "live.html").write_text(live, encoding="utf-8")
-    seen, names = open_scene(browser, site / "08_urdf_and_matrix_stack.html",
-                             tmp_path / "static.png")
-    assert seen >= AXIS_SEEN, f"the site's snapshot: {seen} joint-axis pixels; see {tmp_path}"
-    assert {"notebook08", "test_robot", "link1", "link4", "joint3"} <= set(names), names[:40]
-    # the control: the live viewer's iframe needs the (now gone) server and shows nothing
-    dead, names = open_scene(browser, tmp_path / "live.html", tmp_path / "live.png", timeout=4)
-    assert dead <= EMPTY and "link1" not in names, f"{dead} pixels without a server?"
+def test_exported_scene_draws_from_saved_state_and_orbits(browser, site, tmp_path):
+    """The site's page of notebook 08, from file:// with the network blocked: the robot is
+    drawn and a mouse drag orbits the camera. The control: the same page with the scene's
+    saved commands taken out shows no robot, so the saved widget state is what draws it."""
+    page_file = site / "08_urdf_and_matrix_stack.html"
+    seen = open_scene(browser, page_file, tmp_path / "static.png", orbit=True)
+    assert not seen["requests"], seen["requests"]
+    assert seen["axis"] >= AXIS_SEEN, f"{seen['axis']} joint-axis pixels; see {tmp_path}"
+    assert {"notebook08", "test_robot", "link1", "link4", "joint3"} <= set(seen["names"])
+    assert seen["still"] <= STILL and seen["orbited"] >= 2000, seen
+    text = page_file.read_text(encoding="utf-8")
+    emptied = re.sub(r'("commands": )\[[^\]]*\]', r"\1[]", text)
+    assert emptied != text
+    (tmp_path / "emptied.html").write_text(emptied, encoding="utf-8")
+    shutil.copytree(site / "_static", tmp_path / "_static")
+    dead = open_scene(browser, tmp_path / "emptied.html", tmp_path / "emptied.png", timeout=4)
+    assert dead["axis"] <= EMPTY, f"{dead['axis']} joint-axis pixels without the scene's objects"

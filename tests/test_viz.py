@@ -77,7 +77,7 @@ def page_commands(page):
     """Every command the scenes of an exported page replay (``kl-scene-static`` holders)."""
     found = []
     for text in re.findall(r'<div class="kl-scene-static"[^>]*><script type="application/json">'
-                           r"(.*?)</script></div>", page, re.S):
+                           r"(.*?)</script>", page, re.S):
         data = json.loads(text)
         found += decoded([base64.b64decode(c) for c in data["commands"]], data["paths"],
                          base64.b64decode(data["poses"]))

@@ -50,7 +50,7 @@ with warnings.catch_warnings():
     from meshcat.path import Path as ScenePath
 
 __all__ = ["Scene", "SceneNode", "MeshcatBundle", "bundle", "bundle_source", "scene_js",
-           "scene_holder", "static_page"]
+           "scene_holder", "static_page", "close_tree"]
 
 _HERE = Path(__file__).resolve().parent
 BUNDLE_FILE = Path(meshcat.__file__).resolve().parent / "viewer" / "dist" / "main.min.js"
@@ -131,6 +131,27 @@ def bundle() -> MeshcatBundle:
     if not holder or holder[0].comm is None:
         holder[:] = [MeshcatBundle(source=bundle_source())]
     return holder[0]
+
+
+def close_tree(widget) -> None:
+    """Close ``widget`` and the widgets it holds (children, layout, style), so nothing of
+    it stays in the kernel's widget registry (ipywidgets' ``close`` closes one widget)."""
+    seen = set()
+
+    def walk(w):
+        if id(w) in seen or not isinstance(w, ipywidgets.Widget):
+            return
+        seen.add(id(w))
+        for name in w.keys:
+            if name == "_bundle":
+                continue  # shared by every scene of the kernel
+            value = getattr(w, name, None)
+            for item in value if isinstance(value, list | tuple) else (value,):
+                if isinstance(item, ipywidgets.Widget):
+                    walk(item)
+        w.close()
+
+    walk(widget)
 
 
 def _key_path(path: str) -> str:
@@ -233,6 +254,13 @@ class Scene(anywidget.AnyWidget):
             self._pose_paths = paths
             self._poses = data
             self._seq = self._seq + 1
+
+    def close(self) -> None:
+        """Close the widget (its views leave the page) and its layout widget."""
+        layout = getattr(self, "layout", None)
+        super().close()
+        if isinstance(layout, ipywidgets.Widget):
+            layout.close()
 
     @contextlib.contextmanager
     def batch(self):

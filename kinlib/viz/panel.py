@@ -70,6 +70,9 @@ def joint_panel(viz, *, step: float = 0.1, turn_step: float = np.pi / 12):
         button), ``step`` and ``turn_step`` (the step-size fields) and ``base_info`` (the
         HTML line), so code and tests can drive it:
         ``panel.sliders["joint1"].value = 0.3``, ``panel.buttons["forward"].click()``.
+
+    A new panel for the same visualizer closes the previous one (running its cell again
+    replaces the panel), and closing the visualizer closes its panel.
     """
     import ipywidgets as w
 
@@ -129,4 +132,11 @@ def joint_panel(viz, *, step: float = 0.1, turn_step: float = np.pi / 12):
     panel.step = step_box
     panel.turn_step = turn_box
     panel.base_info = info
+    made = getattr(viz, "panels", None)
+    if isinstance(made, list):
+        from ._widget import close_tree
+
+        for old in made:
+            close_tree(old)
+        made[:] = [panel]
     return panel

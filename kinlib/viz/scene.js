@@ -40,6 +40,7 @@ function kinlibMountScene(MeshCat, el, height) {
   wrap.appendChild(pane);
   el.appendChild(wrap);
   const viewer = new MeshCat.Viewer(pane, false); // false: kinlib runs the render loop
+  viewer.animate = () => {}; // (meshcat restarts its own loop after a recording: not here)
   let alive = true;
   const fit = viewer.set_3d_pane_size.bind(viewer);
   // meshcat sizes its pane to the window; a cell's viewer follows its own element
@@ -51,7 +52,7 @@ function kinlibMountScene(MeshCat, el, height) {
   };
   const resize = new ResizeObserver(() => viewer.set_3d_pane_size());
   resize.observe(pane);
-  const stats = { commands: 0, poses: 0, drawn: 0, seq: -1, drawnSeq: -1, log: [] };
+  const stats = { commands: 0, poses: 0, drawn: 0, renders: 0, seq: -1, drawnSeq: -1, log: [] };
   let pending = false;
   let frame = 0;
   function tick() {
@@ -60,6 +61,7 @@ function kinlibMountScene(MeshCat, el, height) {
     viewer.animator.update();
     if (viewer.needs_render) {
       viewer.render();
+      stats.renders += 1;
       if (pending) {
         // a pose update reached the screen
         pending = false;

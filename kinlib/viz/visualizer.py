@@ -103,7 +103,7 @@ class RobotVisualizer:
     >>> viz.jupyter_cell()                                      # doctest: +SKIP
     """
 
-    #: prefix -> the scene a visualizer of that prefix made (closed when replaced)
+    #: prefix -> the visualizer that made its own scene for it (closed when replaced)
     _made: ClassVar[weakref.WeakValueDictionary] = weakref.WeakValueDictionary()
 
     def __init__(self, robot, *, prefix=None, scene=None, frames=False, link_radius=None,
@@ -129,12 +129,13 @@ class RobotVisualizer:
         if scene is not None and not isinstance(scene, Scene):
             raise KinlibError(f"scene: expected a kinlib.viz.Scene, got {type(scene).__name__}")
         self.skipped_meshes = []
+        self.panels = []  # the joint panels made for this visualizer (closed with it)
         if scene is None:
             old = RobotVisualizer._made.get(self.prefix)
             if old is not None:
-                old.close()  # the same cell run again: its old scene goes
+                old.close()  # the same cell run again: its old scene and panels go
             scene = Scene()
-            RobotVisualizer._made[self.prefix] = scene
+            RobotVisualizer._made[self.prefix] = self
         self.vis = scene
         self.node = self.vis[self.prefix]
         self._root = self.node.path.lower()
@@ -313,6 +314,17 @@ class RobotVisualizer:
     def delete(self) -> None:
         """Remove this robot from the scene."""
         self.node.delete()
+
+    def close(self) -> None:
+        """Close the scene widget and this visualizer's joint panels: their views leave the
+        page and the kernel keeps nothing of them. (A scene passed in as ``scene=`` is
+        closed too: close it yourself to keep it for other robots.)"""
+        from ._widget import close_tree
+
+        for panel in self.panels:
+            close_tree(panel)
+        self.panels = []
+        self.vis.close()
 
     def __repr__(self) -> str:
         return f"RobotVisualizer({self.robot.name!r}, prefix={self.prefix!r})"

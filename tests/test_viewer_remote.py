@@ -1,0 +1,251 @@
+"""The 3-D viewer the way students meet Jupyter: on a hub, a remote machine, Binder.
+
+A JupyterLab (and, separately, a Jupyter Notebook 7) server is started under a base URL,
+as a JupyterHub serves ``/user/NAME/``, and Chromium may reach that server's URLs only:
+every other request (another port, another path, the internet) is aborted and recorded,
+and so is any websocket to anywhere else. Any recorded request fails the test. In that
+page a notebook draws the PUMA 560 in a viewer (pixels of its orange joint axes), a
+joint slider moves it, and removing the robot from the kernel's side empties the view
+(the control: the pixel check can tell an empty scene). In JupyterLab also:
+
+- reloading the browser tab (the notebook saved) shows the scene again, from the widget
+  state the kernel holds;
+- running the viewer's cell again and again replaces its scene: one viewer and one WebGL
+  canvas stay in the page, and the kernel holds no more widgets than after the first run.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import time
+from pathlib import Path
+
+import nbformat
+import pytest
+from browser_helpers import (
+    AXES_SEEN,
+    EMPTY,
+    ROBOT,
+    STILL,
+    assert_robot_drawn,
+    element_shooter,
+    pixels_changed,
+    settled,
+    solid_axes,
+    wait_for_mask,
+)
+from lab_harness import Lab
+
+BASE_URL = "/user/student/"
+VIEWER_CELL = """from kinlib.robots import puma560
+from kinlib.viz import RobotVisualizer, joint_panel
+
+robot = puma560()
+viz = RobotVisualizer(robot, prefix="hub/puma560")
+viz.set_configuration(robot.poses["ready"])
+viz.jupyter_cell(height=360)"""
+PANEL_CELL = "joint_panel(viz)"
+WIDGETS_CELL = ("from ipywidgets.widgets.widget import _instances  # the kernel's live widgets\n"
+                "print('WIDGETS', len(_instances))")
+NOTEBOOK = ".jp-NotebookPanel"
+PROMPTS = f"""() => [...document.querySelectorAll('{NOTEBOOK} .jp-CodeCell .jp-InputPrompt')]
+  .map(p => p.innerText.trim())"""
+MOVED = 200
+
+
+@pytest.fixture(scope="module", params=["lab", "notebook"])
+def hub(request, tmp_path_factory):
+    """A Jupyter server of kind ``lab`` or ``notebook`` under ``/user/student/``."""
+    notebooks = tmp_path_factory.mktemp("hub_notebooks")
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(VIEWER_CELL),
+                                         nbformat.v4.new_code_cell(PANEL_CELL),
+                                         nbformat.v4.new_code_cell(WIDGETS_CELL)])
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    nbformat.write(nb, notebooks / "viewer.ipynb")
+    server = Lab(notebooks, tmp_path_factory.mktemp(f"hub_{request.param}"),
+                 base_url=BASE_URL, app=request.param)
+    try:
+        yield server
+    finally:
+        server.stop()
+
+
+def fenced_page(browser, hub: Lab):
+    """A page that may reach ``hub``'s URLs only; the list of everything else it tried."""
+    allowed = hub.base + "/"
+    ws_allowed = allowed.replace("http://", "ws://", 1)
+    refused: list[str] = []
+    context = browser.new_context(viewport={"width": 1280, "height": 900})
+
+    def gate(route):
+        if route.request.url.startswith(allowed):
+            route.continue_()
+        else:
+            refused.append(route.request.url)
+            route.abort()
+
+    context.route("**/*", gate)
+    page = context.new_page()
+    page.on("websocket", lambda ws: None if ws.url.startswith(ws_allowed)
+            else refused.append(ws.url))
+    page.errors = []
+    page.on("pageerror", lambda e: page.errors.append(str(e)))
+    page.console = []
+    page.on("console", lambda m: page.console.append(f"{m.type}: {m.text}"))
+    return context, page, refused
+
+
+def kernel_idle(hub: Lab) -> dict | None:
+    sessions = [s for s in hub.api("GET", "api/sessions") if s["path"].endswith("viewer.ipynb")]
+    if sessions and sessions[0]["kernel"]["execution_state"] == "idle":
+        return sessions[0]
+    return None
+
+
+def open_and_run(hub: Lab, page) -> list[str]:
+    """Open viewer.ipynb as a student would (the app's own URL), wait for its kernel,
+    Run → Run All Cells, and wait for every cell to run. Returns the page's errors from
+    before Run All (the app's own, if it has any)."""
+    where = "lab/tree" if hub.app == "lab" else "notebooks"
+    page.goto(f"{hub.base}/{where}/viewer.ipynb?token={hub.token}")
+    page.wait_for_function(f"() => document.querySelectorAll('{NOTEBOOK} .jp-Cell').length"
+                           " === 3", timeout=90_000)
+    deadline = time.monotonic() + 90
+    while kernel_idle(hub) is None:
+        assert time.monotonic() < deadline, "the kernel did not become idle"
+        page.wait_for_timeout(250)
+    page.wait_for_timeout(1000)  # the app settles
+    before_run = list(page.errors)
+    for _attempt in range(3):
+        page.locator(".lm-MenuBar-itemLabel", has_text="Run").first.click()
+        page.locator(".lm-Menu-item:not(.lm-mod-disabled) .lm-Menu-itemLabel",
+                     has_text="Run All Cells").first.click()
+        try:
+            page.wait_for_function(f"() => ({PROMPTS})()[0] !== '[ ]:'", timeout=10_000)
+            break
+        except Exception:  # the menu was not ready: again
+            page.keyboard.press("Escape")
+    page.wait_for_function(f"() => ({PROMPTS})().every(p => /^\\[\\d+\\]:$/.test(p))",
+                           timeout=120_000)
+    return before_run
+
+
+def printed_widgets(page) -> int:
+    text = page.locator(f"{NOTEBOOK} .jp-OutputArea-output", has_text="WIDGETS").last
+    return int(re.search(r"WIDGETS (\d+)", text.inner_text()).group(1))
+
+
+def run_cell(page, index: int) -> None:
+    """Run code cell ``index`` again from the page (click it, Shift+Enter is what a
+    student presses) and wait until its prompt shows the new count."""
+    cell = page.locator(f"{NOTEBOOK} .jp-CodeCell").nth(index)
+    before = cell.locator(".jp-InputPrompt").inner_text().strip()
+    cell.locator(".jp-InputArea-editor").click()
+    page.keyboard.press("Control+Enter")
+    page.wait_for_function(
+        f"""() => {{ const p = document.querySelectorAll('{NOTEBOOK} .jp-CodeCell')[{index}]
+          .querySelector('.jp-InputPrompt').innerText.trim();
+          return /^\\[\\d+\\]:$/.test(p) && p !== {json.dumps(before)}; }}""", timeout=60_000)
+
+
+def drag(page, slider, dx: float) -> None:
+    handle = slider.locator(".noUi-handle").first
+    handle.scroll_into_view_if_needed()
+    box = handle.bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 11):
+        page.mouse.move(x + dx * k / 10, y)
+    page.mouse.up()
+
+
+def delete_from_kernel(hub: Lab, code: str) -> None:
+    """Run ``code`` in the notebook's kernel through a second client (as another cell
+    would): what it changes reaches the page over the widget's comm."""
+    from jupyter_client import BlockingKernelClient
+
+    session = kernel_idle(hub)
+    assert session is not None
+    client = BlockingKernelClient(connection_file=str(
+        Path(hub.work) / "runtime" / f"kernel-{session['kernel']['id']}.json"))
+    client.load_connection_file()
+    client.start_channels()
+    try:
+        reply = client.execute_interactive(code, timeout=30)
+        assert reply["content"]["status"] == "ok", reply["content"]
+    finally:
+        client.stop_channels()
+
+
+def test_the_viewer_works_through_the_server_alone(hub, browser, tmp_path):
+    context, page, refused = fenced_page(browser, hub)
+    try:
+        # Notebook 7.6 throws one error of its own while it loads (a plugin's settings
+        # schema; a one-cell "1 + 1" notebook gets it too): the errors before kinlib's
+        # viewer runs are the baseline, and the viewer may add none
+        at_load = open_and_run(hub, page)
+        scenes = page.locator(f"{NOTEBOOK} .jp-OutputArea-output .kinlib-scene")
+        assert scenes.count() == 1, f"{scenes.count()} viewers"
+        scene = scenes.first
+        png = assert_robot_drawn(scene, f"{hub.app}: the viewer", tmp_path / "drawn.png")
+
+        # a joint slider turns the robot; the control: untouched, the picture stays
+        shoot = element_shooter(scene)
+        before = settled(shoot)
+        assert pixels_changed(before, shoot()) <= STILL, "the viewer changes by itself"
+        slider = page.locator(".widget-slider", has=page.locator(".widget-label",
+                                                                 has_text="joint2"))
+        value0 = slider.locator(".widget-readout").inner_text()
+        drag(page, slider, 70)
+        png_moved, _ = wait_for_mask(
+            shoot, lambda p: pixels_changed(before, p), lambda n: n >= MOVED, timeout=15)
+        (tmp_path / "moved.png").write_bytes(png_moved)
+        assert slider.locator(".widget-readout").inner_text() != value0
+        assert pixels_changed(before, png_moved) >= MOVED, "the slider did not move the robot"
+
+        if hub.app == "lab":
+            # save (as autosave would) and reload the tab: the saved output names the
+            # widget, and the scene comes back from its state in the running kernel
+            page.locator(f"{NOTEBOOK} .jp-Notebook").click(position={"x": 5, "y": 5})
+            page.keyboard.press("Control+s")
+            page.wait_for_function("() => !document.querySelector("
+                                   "'#jp-main-dock-panel .lm-TabBar-tab.jp-mod-dirty')",
+                                   timeout=30_000)
+            page.reload()
+            page.wait_for_selector(f"{NOTEBOOK} .kinlib-scene", timeout=90_000)
+            scene = page.locator(f"{NOTEBOOK} .jp-OutputArea-output .kinlib-scene").first
+            assert_robot_drawn(scene, "after a reload", tmp_path / "reloaded.png")
+            # run the viewer cell again and again: one scene, no widgets piling up
+            run_cell(page, 2)
+            widgets_before = printed_widgets(page)
+            for _ in range(8):
+                run_cell(page, 0)
+            run_cell(page, 1)
+            run_cell(page, 2)
+            scene = page.locator(f"{NOTEBOOK} .jp-OutputArea-output .kinlib-scene")
+            assert scene.count() == 1, f"{scene.count()} viewers after re-running the cell"
+            assert page.locator(f"{NOTEBOOK} canvas").count() == 1
+            assert printed_widgets(page) <= widgets_before, "widgets pile up in the kernel"
+            scene = scene.first
+            png = assert_robot_drawn(scene, "after re-running", tmp_path / "rerun.png")
+
+        # the control: remove the robot in the kernel; the view must empty
+        delete_from_kernel(hub, "viz.delete()")
+        empty_png, empty = wait_for_mask(element_shooter(scene), solid_axes,
+                                         lambda m: m.sum() <= EMPTY, timeout=20)
+        (tmp_path / "emptied.png").write_bytes(empty_png)
+        assert empty.sum() <= EMPTY, f"{empty.sum()} joint-axis pixels with the robot deleted"
+        assert int(solid_axes(png).sum()) >= AXES_SEEN
+        assert pixels_changed(png, empty_png) >= ROBOT
+
+        assert not refused, f"requests outside {hub.base}/: {refused[:5]}"
+        assert page.errors == at_load, page.errors[len(at_load):][:3]
+        assert hub.app == "notebook" or not at_load, at_load  # JupyterLab loads cleanly
+        lost = [m for m in page.console if "WebGL" in m and "context" in m.lower()]
+        assert not lost, lost[:3]
+    finally:
+        page.screenshot(path=str(tmp_path / "page.png"))
+        context.close()
