@@ -52,12 +52,14 @@ function kinlibMountScene(MeshCat, el, height) {
   };
   const resize = new ResizeObserver(() => viewer.set_3d_pane_size());
   resize.observe(pane);
-  const stats = { commands: 0, poses: 0, drawn: 0, renders: 0, seq: -1, drawnSeq: -1, log: [] };
+  const stats = { commands: 0, poses: 0, drawn: 0, renders: 0, ticks: 0, seq: -1, drawnSeq: -1,
+                  log: [] };
   let pending = false;
   let frame = 0;
   function tick() {
     if (!alive) return;
     frame = requestAnimationFrame(tick);
+    stats.ticks += 1; // display frames offered to this viewer
     viewer.animator.update();
     if (viewer.needs_render) {
       viewer.render();

@@ -157,12 +157,12 @@ class RobotVisualizer:
         link_mat = _scene.material(self.color)
         for link in self.robot.links:
             node = self.vis[self._path("links", link.name)]
-            node["origin"].set_object(mg.Sphere(1.6 * r), link_mat)
+            node["origin"].set_object(_scene.sphere(1.6 * r), link_mat)
             if frames:
                 node["frame"].set_object(mg.triad(12 * r))
             for i, visual in enumerate(link.visuals):
                 self._draw_visual(node[f"visual_{i}"], link.name, visual, mesh_dir)
-        segment = mg.Cylinder(1.0, r)
+        segment = _scene.cylinder(1.0, r)
         for jt in self.robot.traversal():
             self.vis[self._path("segments", jt.name)].set_object(segment, link_mat)
         axis_mats = {"prismatic": _scene.material(PRISMATIC_COLOR),
@@ -171,7 +171,7 @@ class RobotVisualizer:
             if jt.movable:
                 kind = "prismatic" if jt.type == "prismatic" else "revolute"
                 self.vis[self._path("axes", jt.name)].set_object(
-                    mg.Cylinder(10 * r, 1.25 * r), axis_mats[kind])
+                    _scene.cylinder(10 * r, 1.25 * r), axis_mats[kind])
 
     def _draw_visual(self, node, link_name, visual, mesh_dir) -> None:
         mat = _scene.material(visual.rgba or _VISUAL_COLOR,
@@ -180,9 +180,9 @@ class RobotVisualizer:
         if visual.kind == "box":
             geom = mg.Box(list(visual.size))
         elif visual.kind == "sphere":
-            geom = mg.Sphere(visual.size[0])
+            geom = _scene.sphere(visual.size[0])
         elif visual.kind == "cylinder":  # URDF: along z; three.js: along y -> turn y onto z
-            geom = mg.Cylinder(visual.size[1], visual.size[0])
+            geom = _scene.cylinder(visual.size[1], visual.size[0])
             T = T @ _ROTX_90
         else:
             path = _scene.resolve_mesh(visual.filename, mesh_dir)
