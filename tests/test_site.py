@@ -10,7 +10,7 @@ in headless Chromium with all http(s) blocked and asserts:
 - the mathematics is typeset: MathJax finished, at least as many formulas as the
   notebook's Markdown has ``$…$``/``$$…$$`` pairs, no error node, and no raw TeX
   (``$`` or ``\\command``) left in the text;
-- the 3-D scenes (08, 09, 11), drawn from the notebooks' saved widget state, show their
+- the 3-D scenes (04, 08–11, 13, 14), drawn from the notebooks' saved widget state, show their
   robot (filled joint-axis pixels and the robot's names in the three.js scene; 11's
   carries its IK animation, which plays); removing the robot in that same page empties the
   picture (the control);
@@ -48,10 +48,16 @@ from kinlib.site import MARKER, outline
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = ROOT / "notebooks"
 PAGES = [p.name for p in outline(NOTEBOOKS)]
-SCENES = {"08_urdf_and_matrix_stack": {"test_robot", "link1", "link4", "joint3"},
+SCENES = {"04_gimbal_lock": {"gimbal", "body", "alpha_z", "gamma_x"},
+          "08_urdf_and_matrix_stack": {"test_robot", "link1", "link4", "joint3"},
           "09_denavit_hartenberg": {"puma560", "link1", "link6"},
-          "11_numerical_inverse_kinematics": {"puma560", "link1", "link6", "line"}}
-SLIDERS = {"04_gimbal_lock": 1, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}
+          "10_inverse_kinematics_2r": {"up", "down", "link2"},
+          "11_numerical_inverse_kinematics": {"puma560", "link1", "link6", "line"},
+          "13_singularities_and_manipulability": {"puma560", "link6", "joint5"},
+          "14_configuration_space_planning": {"arm", "obstacles", "link2"}}
+#: pages whose scene carries a viz.animate trajectory (the IK solve, the planned path)
+ANIMATED = {"11_numerical_inverse_kinematics", "14_configuration_space_planning"}
+SLIDERS = {"04_gimbal_lock": 4, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}
 
 MATH_STATE = """() => {
 const SKIP = 'pre, code, script, style, textarea, mjx-container, .jp-InputArea, .kl-frozen';
@@ -229,7 +235,7 @@ def check_snapshot(scene_el, name: str, out: Path) -> None:
     png = assert_robot_drawn(scene_el, f"{name}: the scene", out / "scene.png")
     names = set(scene_el.evaluate(SCENE_NAMES))
     assert SCENES[name] <= names, f"{name}: missing {SCENES[name] - names} in the scene"
-    if name == "11_numerical_inverse_kinematics":  # the IK trajectory is in the page, playing
+    if name in ANIMATED:  # the trajectory is in the page and moves the robot
         from test_viz import page_commands
 
         kinds = {c["type"] for c in page_commands(scene_el.page.content())}

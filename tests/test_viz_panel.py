@@ -70,3 +70,13 @@ def test_panel_rejects_bad_input(make_viz):
         joint_panel(make_viz(puma560()), step=0)
 
 
+
+
+def test_panel_without_base_controls(make_viz):
+    viz = make_viz(puma560())
+    panel = joint_panel(viz, base=False)
+    assert len(panel.children) == 1 + 6  # the title and six sliders, no base box
+    with_base = joint_panel(viz)
+    assert len(with_base.children) == 1 + 6 + 1
+    panel.sliders["joint1"].value = 0.25  # the sliders drive the robot
+    assert viz.q[0] == pytest.approx(0.25)

@@ -8,14 +8,17 @@ reference for its numbers.
 ``ur5()``                  Universal Robots UR5, the manufacturer's DH parameters
 ``panda()``                Franka Emika Panda, the manufacturer's (modified) DH parameters
 ``autorob_test_robot()``   seed 000's ``test_robot`` URDF: a branched tree
+``gimbal_zyx()``           a Z-Y-X gimbal: three joints through one point (04)
 =========================  ====================================================
 
 Each function builds a fresh :class:`~kinlib.Robot`; models do no work at import.
 """
 
 from .autorob import autorob_test_robot
+from .gimbal import gimbal_zyx
 from .industrial import panda, ur5
 from .planar import planar_2r, three_dof_arm
 from .puma560 import puma560
 
-__all__ = ["planar_2r", "three_dof_arm", "puma560", "ur5", "panda", "autorob_test_robot"]
+__all__ = ["planar_2r", "three_dof_arm", "puma560", "ur5", "panda", "autorob_test_robot",
+           "gimbal_zyx"]

@@ -18,8 +18,9 @@ URDF visuals (boxes, cylinders, spheres, meshes) and, if asked, frame triads.
 """
 
 from ._widget import Scene, SceneNode, static_page
+from .obstacles import draw_obstacles
 from .panel import BASE_MOVES, joint_panel, slider_bounds
 from .visualizer import LINK_COLOR, PRISMATIC_COLOR, REVOLUTE_COLOR, RobotVisualizer
 
-__all__ = ["RobotVisualizer", "Scene", "SceneNode", "static_page", "joint_panel",
+__all__ = ["RobotVisualizer", "Scene", "SceneNode", "static_page", "draw_obstacles", "joint_panel",
            "slider_bounds", "BASE_MOVES", "LINK_COLOR", "REVOLUTE_COLOR", "PRISMATIC_COLOR"]

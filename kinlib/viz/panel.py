@@ -53,7 +53,7 @@ def _base_text(T) -> str:
             f"lateral {_vec(lateral)} <i>(world coordinates)</i>")
 
 
-def joint_panel(viz, *, step: float = 0.1, turn_step: float = np.pi / 12):
+def joint_panel(viz, *, step: float = 0.1, turn_step: float = np.pi / 12, base: bool = True):
     """A widget panel that drives ``viz`` (a :class:`~kinlib.viz.RobotVisualizer`).
 
     One ``FloatSlider`` per joint (in the order of q), bounded by :func:`slider_bounds` and
@@ -61,7 +61,8 @@ def joint_panel(viz, *, step: float = 0.1, turn_step: float = np.pi / 12):
     controls: buttons ``forward``, ``back``, ``left``, ``right``, ``turn left``,
     ``turn right`` that move ``viz.base`` with :func:`kinlib.holonomic.base_step` by
     ``step`` metres or ``turn_step`` radians (editable in the panel), and a line showing
-    the base's heading and lateral vectors in world coordinates.
+    the base's heading and lateral vectors in world coordinates. ``base=False`` leaves
+    the base controls out (a robot that stands still).
 
     Returns
     -------
@@ -126,7 +127,7 @@ def joint_panel(viz, *, step: float = 0.1, turn_step: float = np.pi / 12):
         w.HBox([step_box, turn_box]),
         info,
     ])
-    panel = w.VBox([w.HTML("<b>joints</b>"), *sliders.values(), base_box])
+    panel = w.VBox([w.HTML("<b>joints</b>"), *sliders.values()] + ([base_box] if base else []))
     panel.sliders = sliders
     panel.buttons = buttons
     panel.step = step_box
