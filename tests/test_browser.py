@@ -1,4 +1,6 @@
-"""The robot really appears in a browser: headless Chromium renders the meshcat viewer.
+"""The robot really appears in a browser: headless Chromium renders the self-contained
+page of ``viz.static_html()`` (the meshcat viewer and the scene inline) from ``file://``
+with all http(s) blocked. (The live widget in JupyterLab: test_lab.py, test_viewer_remote.py.)
 
 The PUMA 560 is drawn in a saturated magenta no other part of the viewer uses (sky-blue
 background, grey grid, orange joint axes), so its pixels can be counted in a screenshot.
@@ -53,49 +55,42 @@ def test_mask_on_synthetic_images():
     assert robot_mask(buf.getvalue()).sum() == 9
 
 
-def test_puma_in_the_live_viewer_and_the_static_page(browser, tmp_path):
+def test_puma_in_the_static_page(browser, tmp_path):
     from kinlib.viz import RobotVisualizer
 
     robot = puma560()
     viz = RobotVisualizer(robot, prefix="browser_puma", color=MAGENTA)
-    viz.vis.delete()  # an empty scene: only this robot
-    viz = RobotVisualizer(robot, prefix="browser_puma", color=MAGENTA)
     viz.set_camera_position([1.1, -1.0, 0.8])
     q = np.zeros(6)
+    pages = {}
     viz.set_configuration(q)
+    pages["first"] = viz.static_html()
+    q[0] += np.pi / 2
+    viz.set_configuration(q)
+    pages["turned"] = viz.static_html()
+    viz.delete()
+    pages["empty"] = viz.static_html()
+    viz.close()
     context = browser.new_context(viewport={"width": 800, "height": 600})
+    requests = []
     try:
-        page = context.new_page()
-        page.goto(viz.url())
-        page.wait_for_selector("canvas", timeout=15_000)
-        png, first = wait_for_picture(page, lambda m: m.sum() >= SEEN)
-        (tmp_path / "puma.png").write_bytes(png)
-        assert first.sum() >= SEEN, f"only {first.sum()} robot pixels; see {tmp_path}"
-
-        q[0] += np.pi / 2
-        viz.set_configuration(q)
-        png, turned = wait_for_picture(page, lambda m: changed_fraction(first, m) > 0.5)
-        (tmp_path / "puma_turned.png").write_bytes(png)
-        assert turned.sum() >= SEEN
-        assert changed_fraction(first, turned) > 0.5
-
-        viz.save_html(tmp_path / "puma.html")
-        offline = browser.new_context(viewport={"width": 800, "height": 600})
-        try:  # the snapshot must render without the server: block all http(s)
-            offline.route(re.compile(r"^https?://"), lambda route: route.abort())
-            still = offline.new_page()
-            still.goto((tmp_path / "puma.html").as_uri())
-            still.wait_for_selector("canvas", timeout=15_000)
-            png, snap = wait_for_picture(still, lambda m: m.sum() >= SEEN)
-            (tmp_path / "static.png").write_bytes(png)
-            assert snap.sum() >= SEEN, f"static page: only {snap.sum()} robot pixels"
-        finally:
-            offline.close()
-
-        viz.delete()
-        png, empty = wait_for_picture(page, lambda m: m.sum() <= EMPTY)
-        (tmp_path / "empty.png").write_bytes(png)
-        assert empty.sum() <= EMPTY, f"{empty.sum()} robot-coloured pixels on an empty scene"
+        context.route(re.compile(r"^https?://"),
+                      lambda route: (requests.append(route.request.url), route.abort()))
+        masks = {}
+        for name, text in pages.items():
+            (tmp_path / f"{name}.html").write_text(text, encoding="utf-8")
+            page = context.new_page()
+            page.goto((tmp_path / f"{name}.html").as_uri())
+            page.wait_for_selector("canvas", timeout=15_000)
+            accept = (lambda m: m.sum() <= EMPTY) if name == "empty" else \
+                (lambda m: m.sum() >= SEEN)
+            png, masks[name] = wait_for_picture(page, accept)
+            (tmp_path / f"{name}.png").write_bytes(png)
+            page.close()
     finally:
         context.close()
-        viz.delete()
+    assert not requests, requests
+    assert masks["first"].sum() >= SEEN, f"only {masks['first'].sum()} robot pixels"
+    assert masks["turned"].sum() >= SEEN
+    assert changed_fraction(masks["first"], masks["turned"]) > 0.5  # joint 1 turned 90°
+    assert masks["empty"].sum() <= EMPTY, f"{masks['empty'].sum()} robot pixels, robot deleted"

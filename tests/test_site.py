@@ -311,3 +311,34 @@ def test_exported_scene_draws_from_saved_state_and_orbits(browser, site, tmp_pat
     shutil.copytree(site / "_static", tmp_path / "_static")
     dead = open_scene(browser, tmp_path / "emptied.html", tmp_path / "emptied.png", timeout=4)
     assert dead["axis"] <= EMPTY, f"{dead['axis']} joint-axis pixels without the scene's objects"
+
+
+def test_nbconvert_kinlib_html_shows_scenes_offline(browser, tmp_path):
+    """``jupyter nbconvert --to kinlib_html --execute``: one file whose scene draws from
+    file:// with the network blocked. The control: nbconvert's own ``--to html`` of the
+    same notebook draws its widgets with a manager from a CDN, so offline it shows none."""
+    import subprocess
+    import sys
+
+    import nbformat
+
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(
+        "from kinlib.robots import puma560\nfrom kinlib.viz import RobotVisualizer\n"
+        "viz = RobotVisualizer(puma560(), prefix='export/puma560')\n"
+        "viz.set_configuration(puma560().poses['ready'])\nviz.jupyter_cell(height=300)")])
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    nbformat.write(nb, tmp_path / "one.ipynb")
+    for to in ("kinlib_html", "html"):
+        done = subprocess.run([sys.executable, "-m", "jupyter", "nbconvert", "--to", to,
+                               "--execute", "--output", f"one_{to}", "one.ipynb"],
+                              cwd=tmp_path, capture_output=True, text=True, timeout=300)
+        assert done.returncode == 0, done.stderr[-3000:]
+    page = tmp_path / "one_kinlib_html.html"
+    seen = open_scene(browser, page, tmp_path / "kinlib_html.png", orbit=True)
+    assert seen["axis"] >= AXIS_SEEN, f"{seen['axis']} joint-axis pixels; see {tmp_path}"
+    assert {"export", "puma560", "link6"} <= set(seen["names"])
+    assert seen["orbited"] >= 2000 and seen["still"] <= STILL, seen
+    plain = (tmp_path / "one_html.html").read_text(encoding="utf-8")
+    assert "application/vnd.jupyter.widget-state+json" in plain  # the state is there...
+    assert 'class="kinlib-scene"' not in plain and "kl-scene-static" not in plain  # ...no viewer
