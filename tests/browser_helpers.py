@@ -25,6 +25,19 @@ ROBOT = 400  # pixels that must change when the robot is removed from its viewer
 STILL = 5  # at most this many change between two screenshots of an untouched viewer
 
 
+def drag_slider(page, slider, dx: float) -> None:
+    """Drag an ipywidgets slider's handle ``dx`` pixels with the mouse, as a student would."""
+    handle = slider.locator(".noUi-handle").first
+    handle.scroll_into_view_if_needed()
+    box = handle.bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 11):
+        page.mouse.move(x + dx * k / 10, y)
+    page.mouse.up()
+
+
 def unavailable(reason: str):
     if os.environ.get("KINLIB_REQUIRE_BROWSER") == "1":
         pytest.fail(f"KINLIB_REQUIRE_BROWSER=1 but {reason}")

@@ -39,6 +39,7 @@ from browser_helpers import (
     STILL,
     assert_removal_empties,
     assert_robot_drawn,
+    drag_slider,
     element_shooter,
     pixels_changed,
     settled,
@@ -178,19 +179,6 @@ def viewer_frames(page):
     """The 3-D viewers (kinlib scene widgets) of the open notebook."""
     return page.locator(".jp-NotebookPanel:not(.lm-mod-hidden) .jp-OutputArea-output "
                         ".kinlib-scene")
-
-
-def drag_slider(page, slider, dx: float) -> None:
-    """Drag a slider's handle ``dx`` pixels with the mouse, as a student would."""
-    handle = slider.locator(".noUi-handle").first
-    handle.scroll_into_view_if_needed()
-    box = handle.bounding_box()
-    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
-    page.mouse.move(x, y)
-    page.mouse.down()
-    for k in range(1, 11):
-        page.mouse.move(x + dx * k / 10, y)
-    page.mouse.up()
 
 
 def readout(slider) -> str:

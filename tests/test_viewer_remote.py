@@ -29,6 +29,7 @@ from browser_helpers import (
     ROBOT,
     STILL,
     assert_robot_drawn,
+    drag_slider,
     element_shooter,
     pixels_changed,
     settled,
@@ -138,7 +139,7 @@ def printed_widgets(page) -> int:
 
 
 def run_cell(page, index: int) -> None:
-    """Run code cell ``index`` again from the page (click it, Shift+Enter is what a
+    """Run code cell ``index`` again from the page (click it and press Ctrl+Enter, as a
     student presses) and wait until its prompt shows the new count."""
     cell = page.locator(f"{NOTEBOOK} .jp-CodeCell").nth(index)
     before = cell.locator(".jp-InputPrompt").inner_text().strip()
@@ -148,18 +149,6 @@ def run_cell(page, index: int) -> None:
         f"""() => {{ const p = document.querySelectorAll('{NOTEBOOK} .jp-CodeCell')[{index}]
           .querySelector('.jp-InputPrompt').innerText.trim();
           return /^\\[\\d+\\]:$/.test(p) && p !== {json.dumps(before)}; }}""", timeout=60_000)
-
-
-def drag(page, slider, dx: float) -> None:
-    handle = slider.locator(".noUi-handle").first
-    handle.scroll_into_view_if_needed()
-    box = handle.bounding_box()
-    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
-    page.mouse.move(x, y)
-    page.mouse.down()
-    for k in range(1, 11):
-        page.mouse.move(x + dx * k / 10, y)
-    page.mouse.up()
 
 
 def delete_from_kernel(hub: Lab, code: str) -> None:
@@ -199,7 +188,7 @@ def test_the_viewer_works_through_the_server_alone(hub, browser, tmp_path):
         slider = page.locator(".widget-slider", has=page.locator(".widget-label",
                                                                  has_text="joint2"))
         value0 = slider.locator(".widget-readout").inner_text()
-        drag(page, slider, 70)
+        drag_slider(page, slider, 70)
         png_moved, _ = wait_for_mask(
             shoot, lambda p: pixels_changed(before, p), lambda n: n >= MOVED, timeout=15)
         (tmp_path / "moved.png").write_bytes(png_moved)
