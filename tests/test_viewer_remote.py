@@ -6,12 +6,14 @@ every other request (another port, another path, the internet) is aborted and re
 and so is any websocket to anywhere else. Any recorded request fails the test. In that
 page a notebook draws the PUMA 560 in a viewer (pixels of its orange joint axes), a
 joint slider moves it, and removing the robot from the kernel's side empties the view
-(the control: the pixel check can tell an empty scene). In JupyterLab also:
+(the control: the pixel check can tell an empty scene), while a second viewer in the same
+notebook is untouched by both (two viewers are independent). In JupyterLab also:
 
 - reloading the browser tab (the notebook saved) shows the scene again, from the widget
   state the kernel holds;
-- running the viewer's cell again and again replaces its scene: one viewer and one WebGL
-  canvas stay in the page, and the kernel holds no more widgets than after the first run.
+- running the viewer's cell again and again replaces its scene: the viewers and WebGL
+  canvases in the page stay two, the kernel holds no more widgets than after the first
+  run, and the meshcat bundle was evaluated once in the page (its one style sheet).
 """
 
 from __future__ import annotations
@@ -47,6 +49,10 @@ viz = RobotVisualizer(robot, prefix="hub/puma560")
 viz.set_configuration(robot.poses["ready"])
 viz.jupyter_cell(height=360)"""
 PANEL_CELL = "joint_panel(viz)"
+SECOND_CELL = """from kinlib.robots import planar_2r
+
+viz2 = RobotVisualizer(planar_2r(0.4, 0.3), prefix="hub/arm2")
+viz2.jupyter_cell(height=240)"""
 WIDGETS_CELL = ("from ipywidgets.widgets.widget import _instances  # the kernel's live widgets\n"
                 "print('WIDGETS', len(_instances))")
 NOTEBOOK = ".jp-NotebookPanel"
@@ -61,7 +67,8 @@ def hub(request, tmp_path_factory):
     notebooks = tmp_path_factory.mktemp("hub_notebooks")
     nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(VIEWER_CELL),
                                          nbformat.v4.new_code_cell(PANEL_CELL),
-                                         nbformat.v4.new_code_cell(WIDGETS_CELL)])
+                                         nbformat.v4.new_code_cell(WIDGETS_CELL),
+                                         nbformat.v4.new_code_cell(SECOND_CELL)])
     nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
                                  "language": "python"}
     nbformat.write(nb, notebooks / "viewer.ipynb")
@@ -112,7 +119,7 @@ def open_and_run(hub: Lab, page) -> list[str]:
     where = "lab/tree" if hub.app == "lab" else "notebooks"
     page.goto(f"{hub.base}/{where}/viewer.ipynb?token={hub.token}")
     page.wait_for_function(f"() => document.querySelectorAll('{NOTEBOOK} .jp-Cell').length"
-                           " === 3", timeout=90_000)
+                           " === 4", timeout=90_000)
     deadline = time.monotonic() + 90
     while kernel_idle(hub) is None:
         assert time.monotonic() < deadline, "the kernel did not become idle"
@@ -177,8 +184,10 @@ def test_the_viewer_works_through_the_server_alone(hub, browser, tmp_path):
         # viewer runs are the baseline, and the viewer may add none
         at_load = open_and_run(hub, page)
         scenes = page.locator(f"{NOTEBOOK} .jp-OutputArea-output .kinlib-scene")
-        assert scenes.count() == 1, f"{scenes.count()} viewers"
-        scene = scenes.first
+        assert scenes.count() == 2, f"{scenes.count()} viewers"
+        scene, other = scenes.first, scenes.nth(1)
+        other_png = assert_robot_drawn(other, f"{hub.app}: the second viewer",
+                                       tmp_path / "other.png")
         png = assert_robot_drawn(scene, f"{hub.app}: the viewer", tmp_path / "drawn.png")
 
         # a joint slider turns the robot; the control: untouched, the picture stays
@@ -194,6 +203,8 @@ def test_the_viewer_works_through_the_server_alone(hub, browser, tmp_path):
         (tmp_path / "moved.png").write_bytes(png_moved)
         assert slider.locator(".widget-readout").inner_text() != value0
         assert pixels_changed(before, png_moved) >= MOVED, "the slider did not move the robot"
+        assert pixels_changed(other_png, settled(element_shooter(other))) <= STILL, \
+            "the slider of the first viewer changed the second"
 
         if hub.app == "lab":
             # save (as autosave would) and reload the tab: the saved output names the
@@ -215,10 +226,14 @@ def test_the_viewer_works_through_the_server_alone(hub, browser, tmp_path):
             run_cell(page, 1)
             run_cell(page, 2)
             scene = page.locator(f"{NOTEBOOK} .jp-OutputArea-output .kinlib-scene")
-            assert scene.count() == 1, f"{scene.count()} viewers after re-running the cell"
-            assert page.locator(f"{NOTEBOOK} canvas").count() == 1
+            assert scene.count() == 2, f"{scene.count()} viewers after re-running the cell"
+            assert page.locator(f"{NOTEBOOK} canvas").count() == 2
             assert printed_widgets(page) <= widgets_before, "widgets pile up in the kernel"
-            scene = scene.first
+            sheets = page.evaluate("() => [...document.styleSheets].filter(s => [...s.cssRules]"
+                                   ".some(r => r.cssText.includes('meshcat-visibility-checkbox')"
+                                   ")).length")
+            assert sheets == 1, f"the meshcat bundle was evaluated {sheets} times"
+            scene, other = scene.first, scene.nth(1)
             png = assert_robot_drawn(scene, "after re-running", tmp_path / "rerun.png")
 
         # the control: remove the robot in the kernel; the view must empty
@@ -229,6 +244,8 @@ def test_the_viewer_works_through_the_server_alone(hub, browser, tmp_path):
         assert empty.sum() <= EMPTY, f"{empty.sum()} joint-axis pixels with the robot deleted"
         assert int(solid_axes(png).sum()) >= AXES_SEEN
         assert pixels_changed(png, empty_png) >= ROBOT
+        left = int(solid_axes(settled(element_shooter(other))).sum())
+        assert left >= AXES_SEEN, f"the second viewer lost its robot too ({left} pixels)"
 
         assert not refused, f"requests outside {hub.base}/: {refused[:5]}"
         assert page.errors == at_load, page.errors[len(at_load):][:3]
