@@ -100,6 +100,9 @@ def test_every_scene_shares_one_bundle_per_kernel(scene):
 
 
 def test_bad_scene_input_is_a_clear_error(scene):
+    for bad in (0, -1, 2.5, "300", True, None):
+        with pytest.raises(KinlibError, match="height"):
+            Scene(height=bad)
     with pytest.raises(KinlibError, match="4x4"):
         scene["x"].set_transform(np.eye(3))
 

@@ -181,7 +181,10 @@ class Scene(anywidget.AnyWidget):
     height = t.Int(400).tag(sync=True)
 
     def __init__(self, height: int = 400, frozen: bool = False):
-        super().__init__(_bundle=bundle(), height=height)
+        if isinstance(height, bool) or not isinstance(height, int | np.integer) or height <= 0:
+            raise KinlibError(f"height: expected a positive whole number of pixels, got "
+                              f"{height!r}")
+        super().__init__(_bundle=bundle(), height=int(height))
         self._store: dict[tuple, bytes] = {}
         self._pose_of: dict[str, np.ndarray] = {}
         self.frozen = bool(frozen)
