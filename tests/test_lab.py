@@ -318,12 +318,12 @@ def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path):
 
 
 def take_readme_shot(page, name: str, tmp_path: Path) -> None:
-    """The README's picture of ``name``: the first viewer or slider in view, sidebar hidden."""
+    """The README's picture of ``name``, sidebar hidden: 09's viewer, 04's β slider (with
+    the det E it drives and the gimbal it redraws)."""
     target = Path(os.environ.get("KINLIB_SCREENSHOTS") or tmp_path) / README_SHOTS[name]
     target.parent.mkdir(parents=True, exist_ok=True)
     page.keyboard.press("Control+b")  # hide the file browser
-    anchor = viewer_frames(page) if viewer_frames(page).count() else page.locator(
-        ".widget-slider")
+    anchor = page.locator(".widget-slider") if name == "04_gimbal_lock" else viewer_frames(page)
     anchor.first.scroll_into_view_if_needed()
     page.wait_for_timeout(1500)
     page.screenshot(path=str(target))
