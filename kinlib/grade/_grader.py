@@ -259,11 +259,26 @@ def grade_many(submissions, assignment: str | None = None, *, jobs: int | None =
         return list(pool.map(lambda p: grade(p, assignment, **kwargs), paths))
 
 
+def _printable(line: str) -> str:
+    r"""``line`` with every control or format character (newlines, carriage returns,
+    terminal escapes, bidirectional overrides) shown escaped: text from a student's code
+    cannot start a line of its own, hide the real total, or recolour the terminal.
+
+    >>> print(_printable("ok\x1b[2K\r  total: 38\n"))
+    ok\x1b[2K\r  total: 38\n
+    """
+    import unicodedata
+
+    return "".join(ch.encode("unicode_escape").decode("ascii")
+                   if unicodedata.category(ch) in ("Cc", "Cf") else ch for ch in line)
+
+
 def format_report(result: dict) -> str:
-    """A per-function text report of one :func:`grade` result, for the student."""
+    """A per-function text report of one :func:`grade` result, for the student; every line
+    passes through :func:`_printable`."""
     lines = [f"{result['submission']}"]
     if not result["graded"]:
-        return "\n".join(lines + [f"  NOT GRADED: {result['error']}"])
+        return "\n".join(map(_printable, lines + [f"  NOT GRADED: {result['error']}"]))
     lines[0] += f"  ({result['assignment']}: {result.get('title', '')})"
     for c in result["checks"]:
         mark = "ok " if c["passed"] == c["total"] else "   "
@@ -281,7 +296,7 @@ def format_report(result: dict) -> str:
         where = f" ({cell['where']})" if cell["where"] else ""
         lines.append(f"  note: running cell {cell['cell']} gave {cell['error']}{where}")
     lines.append(f"  total: {result['score']:g} / {result['max_score']:g}")
-    return "\n".join(lines)
+    return "\n".join(map(_printable, lines))
 
 
 def to_json(result: dict) -> str:

@@ -99,8 +99,19 @@ def _check(cond: bool, what: str) -> None:
         raise WireError(what)
 
 
-def decode(data, _depth: int = 0):
-    """Tagged plain data back into Python and numpy values; :class:`WireError` if malformed."""
+def decode(data):
+    """Tagged plain data back into Python and numpy values; :class:`WireError` if malformed,
+    whatever the malformation (the student's process writes these bytes: nothing it sends
+    may raise anything else in the grader)."""
+    try:
+        return _decode(data, 0)
+    except WireError:
+        raise
+    except Exception as exc:  # e.g. an unhashable tuple key, an absurd array
+        raise WireError(f"malformed value ({type(exc).__name__})") from None
+
+
+def _decode(data, _depth: int):
     _check(_depth <= MAX_DEPTH + 1, "nested too deeply")
     if data is None or type(data) in (bool, int, float, str):
         return data
@@ -108,16 +119,16 @@ def decode(data, _depth: int = 0):
     tag, v = data["t"], data.get("v")
     if tag in ("list", "tuple"):
         _check(type(v) is list, "list without items")
-        items = [decode(x, _depth + 1) for x in v]
+        items = [_decode(x, _depth + 1) for x in v]
         return items if tag == "list" else tuple(items)
     if tag == "dict":
         _check(type(v) is list and all(type(p) is list and len(p) == 2 for p in v), "bad dict")
         out = {}
         for k, x in v:
-            key = decode(k, _depth + 1)
+            key = _decode(k, _depth + 1)
             _check(isinstance(key, str | int | float | bool | tuple) or key is None,
                    "unhashable dict key")
-            out[key] = decode(x, _depth + 1)
+            out[key] = _decode(x, _depth + 1)
         return out
     if tag == "nd":
         shape, kind = data.get("shape"), data.get("dtype")
