@@ -72,3 +72,83 @@ def test_control_raw_fields_would_forge_the_report():
     raw = "\n".join([f"  note: {r['cells'][0]['error']}", "  total: 0 / 2"])
     assert sum(line.lstrip().startswith("total:") for line in raw.splitlines()) == 3
     assert "\x1b" in raw
+
+
+# --- hostile cells against the real grader (assignment 01, its own solution) -------------
+
+FORGE_CELL = """import json, os
+def _lines(ms):
+    return b''.join(json.dumps(m).encode() + b'\\n' for m in ms)
+_odd = [{'ev': 'cell', 'i': v, 'phase': 'start'} for v in (float('nan'), [1], True, 'x', 10**9)]
+_flood = [{'ev': 'cell', 'i': k, 'ok': False, 'error': 'forged'} for k in range(100_000)]
+_done = [{'ev': 'cells_done'}]
+for _fd in range(3, 64):
+    try:
+        os.write(_fd, _lines(_odd + _done + _flood))
+    except OSError:
+        pass
+"""
+CHATTY_CELL = """import json, os, time
+while True:  # never ends, but talks: each line must not extend the cell's deadline
+    for _fd in range(3, 64):
+        try:
+            os.write(_fd, json.dumps({'ev': 'noise'}).encode() + b'\\n')
+        except OSError:
+            pass
+    time.sleep(0.3)
+"""
+
+
+def test_forged_cell_reports_and_chatty_cells(tmp_path):
+    from grading_helpers import by_function, solution_code, write_notebook
+    from watchdog import no_hang
+
+    from kinlib.grade import grade_many
+
+    subs = [write_notebook(tmp_path / "forges.ipynb", "import numpy as np", FORGE_CELL,
+                           solution_code("01_rotations"), assignment="01_rotations"),
+            write_notebook(tmp_path / "chatty.ipynb", "import numpy as np", CHATTY_CELL,
+                           solution_code("01_rotations"), assignment="01_rotations")]
+    with no_hang("grading a chatty cell", 240):
+        forges, chatty = grade_many(subs, cell_timeout=3.0, jobs=2)
+    for result in (forges, chatty):
+        assert result["graded"], result["error"]
+        assert result["score"] == result["max_score"], result["checks"]  # the honest score
+        assert all(c["passed"] == c["total"] for c in by_function(result).values())
+    # no forged report was taken; the forging cell, stuck writing into its own request
+    # pipe, is blamed and skipped although it forged its own "ended" report
+    assert not any("forged" in c["error"] for c in forges["cells"]), forges["cells"][:3]
+    assert [c["cell"] for c in forges["cells"]] in ([], [1]), forges["cells"]
+    skipped = [c for c in chatty["cells"] if "skipped" in c["error"]]
+    assert [c["cell"] for c in skipped] == [1], chatty["cells"]
+
+
+def test_a_cell_without_source_and_a_failing_submission_lose_nothing(tmp_path, monkeypatch):
+    import json
+
+    from grading_helpers import solution_code, write_notebook
+
+    import kinlib.grade._grader as g
+
+    good = write_notebook(tmp_path / "good.ipynb", "import numpy as np",
+                          solution_code("01_rotations"), assignment="01_rotations")
+    nb = json.loads(good.read_text())
+    nb["cells"].insert(0, {"id": "nosource", "cell_type": "code", "metadata": {}, "outputs": [],
+                           "execution_count": None})  # no "source"
+    odd = tmp_path / "no_source.ipynb"
+    odd.write_text(json.dumps(nb))
+    boom = tmp_path / "boom.ipynb"
+    boom.write_text(good.read_text())
+    real = g.grade
+
+    def grade(path, *a, **k):
+        if str(path).endswith("boom.ipynb"):
+            raise RuntimeError("a grader bug")
+        return real(path, *a, **k)
+
+    monkeypatch.setattr(g, "grade", grade)
+    results = g.grade_many([odd, boom, good], jobs=2, cell_timeout=10.0)
+    assert [r["submission"] for r in results] == [str(odd), str(boom), str(good)]
+    assert results[0]["graded"] and results[0]["score"] == results[0]["max_score"]
+    assert not results[1]["graded"] and "a grader bug" in results[1]["error"]
+    assert results[2]["graded"] and results[2]["score"] == results[2]["max_score"]

@@ -96,29 +96,55 @@ class _Session:
         return self.worker
 
     def _run_cells(self) -> None:
+        """Run the cells; keep one report per cell that was sent. A cell's deadline is
+        fixed when it starts (messages cannot extend it), and all cells together get
+        ``cell_timeout`` each plus one."""
         w = self.worker
-        current = None
+        batch = [c for c in self.cells if c[0] not in self.skip]
+        order = [c[0] for c in batch]  # a start is taken only for the next cell, an end
+        sent, nxt = set(order), 0      # only for the cell that started: one report each
+        current, cell_end, last = None, None, None  # last: the cell that started last
+        end = time.monotonic() + self.cell_timeout * (len(batch) + 1)
+
+        def index(m) -> int | None:
+            i = m.get("i")
+            return i if type(i) is int and i in sent else None  # forged or odd: ignored
+
         try:
-            w.request({"op": "cells", "cells": [c for c in self.cells if c[0] not in self.skip]})
+            w.request({"op": "cells", "cells": batch})
             while True:
-                m = w.receive(self.cell_timeout)
-                if m.get("ev") == "cell" and m.get("phase") == "start":
-                    current = m.get("i")
-                elif m.get("ev") == "cell":
-                    i = m.get("i")
+                now = time.monotonic()
+                due = min(end, cell_end) if cell_end is not None else end
+                if now >= due:
+                    raise WorkerTimeout("the cells took too long")
+                m = w.receive(min(self.cell_timeout, due - now))
+                ev, i = m.get("ev"), index(m)
+                if ev == "cell" and m.get("phase") == "start":
+                    if current is None and nxt < len(order) and i == order[nxt]:
+                        current, last, nxt = i, i, nxt + 1
+                        cell_end = time.monotonic() + self.cell_timeout
+                elif ev == "cell" and i is not None and i == current:
                     self.reports.setdefault(i, {
                         "cell": i, "ok": bool(m.get("ok")), "error": str(m.get("error", ""))[:600],
                         "where": str(m.get("where", ""))[:100]})
-                    current = None
-                elif m.get("ev") == "cells_done":
-                    return
+                    current, cell_end = None, None
+                elif ev == "cells_done" and current is None and nxt == len(order):
+                    return  # (a forged "done" before the last cell ended is ignored)
         except (WorkerTimeout, WorkerDied) as exc:
             what = (f"ran longer than {self.cell_timeout:g} s and was stopped"
                     if isinstance(exc, WorkerTimeout) else f"ended the process: {exc}")
-            if current is not None:
-                self.skip.add(current)
-                self.reports[current] = {"cell": current, "ok": False,
+            # the cell running, or the last one started (its end may have been forged by
+            # its own code, to escape the blame)
+            culprit = current if current is not None else last
+            if culprit is not None:
+                self.skip.add(culprit)
+                self.reports[culprit] = {"cell": culprit, "ok": False,
                                          "error": f"this cell {what}; it was skipped", "where": ""}
+            else:  # no cell started: the rest are skipped rather than retried for ever
+                for i in order[nxt:]:
+                    self.skip.add(i)
+                    self.reports.setdefault(i, {"cell": i, "ok": False, "where": "",
+                                                "error": f"not run: the cells {what}"})
             w.kill()
 
     def close(self) -> None:
@@ -233,8 +259,9 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
         result["error"] = str(exc)
         return result
     result.update(assignment=name, title=spec.title, max_score=spec.max_score)
-    cells = [[i, c.source] for i, c in enumerate(nb.cells)
-             if c.cell_type == "code" and isinstance(c.source, str)]
+    cells = [[i, c.get("source")] for i, c in enumerate(nb.cells)
+             if isinstance(c, dict) and c.get("cell_type") == "code"
+             and isinstance(c.get("source"), str)]  # a cell without source is left out
     session = _Session(cells, cell_timeout, memory_mb)
     try:
         for check in spec.checks:
@@ -255,8 +282,17 @@ def grade_many(submissions, assignment: str | None = None, *, jobs: int | None =
     """Grade several notebooks in parallel (``jobs`` student processes at a time)."""
     paths = list(submissions)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths) or 1))
+    def one(path):  # one submission's failure never loses another's result
+        try:
+            return grade(path, assignment, **kwargs)
+        except Exception as exc:
+            return {"submission": str(path), "assignment": assignment, "graded": False,
+                    "error": f"the grader failed on this submission: {type(exc).__name__}: "
+                             f"{str(exc)[:300]}", "score": 0.0, "max_score": 0.0,
+                    "checks": [], "cells": []}
+
     with ThreadPoolExecutor(max_workers=jobs) as pool:
-        return list(pool.map(lambda p: grade(p, assignment, **kwargs), paths))
+        return list(pool.map(one, paths))
 
 
 def _printable(line: str) -> str:
