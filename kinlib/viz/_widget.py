@@ -50,7 +50,7 @@ with warnings.catch_warnings():
     from meshcat.path import Path as ScenePath
 
 __all__ = ["Scene", "SceneNode", "MeshcatBundle", "bundle", "bundle_source", "scene_js",
-           "scene_holder", "static_page", "close_tree"]
+           "scene_holder", "static_page", "inline_viewer", "close_tree", "check_height"]
 
 _HERE = Path(__file__).resolve().parent
 BUNDLE_FILE = Path(meshcat.__file__).resolve().parent / "viewer" / "dist" / "main.min.js"
@@ -154,6 +154,13 @@ def close_tree(widget) -> None:
     walk(widget)
 
 
+def check_height(height) -> int:
+    """A viewer height in pixels: a positive whole number, else a :class:`KinlibError`."""
+    if isinstance(height, bool) or not isinstance(height, int | np.integer) or height <= 0:
+        raise KinlibError(f"height: expected a positive whole number of pixels, got {height!r}")
+    return int(height)
+
+
 def _key_path(path: str) -> str:
     return "/" + "/".join(p for p in path.split("/") if p)
 
@@ -181,21 +188,16 @@ class Scene(anywidget.AnyWidget):
     height = t.Int(400).tag(sync=True)
 
     def __init__(self, height: int = 400, frozen: bool = False):
-        if isinstance(height, bool) or not isinstance(height, int | np.integer) or height <= 0:
-            raise KinlibError(f"height: expected a positive whole number of pixels, got "
-                              f"{height!r}")
-        super().__init__(_bundle=bundle(), height=int(height))
+        super().__init__(_bundle=bundle(), height=check_height(height))
         self._store: dict[tuple, bytes] = {}
         self._pose_of: dict[str, np.ndarray] = {}
+        self._batches = 0  # open batch() blocks: the synced traits are set when they close
+        self._pending: set[str] = set()
         self.frozen = bool(frozen)
 
     # -- the meshcat-like API ------------------------------------------------------------
     def __getitem__(self, path: str) -> SceneNode:
         return SceneNode(self, ScenePath(("meshcat",)).append(path))
-
-    @property
-    def root(self) -> SceneNode:
-        return SceneNode(self, ScenePath(("meshcat",)))
 
     def set_animation(self, animation, play: bool = True, repetitions: int = 1) -> None:
         """Send a ``meshcat.animation.Animation`` (the viewer shows its play controls)."""
@@ -234,29 +236,39 @@ class Scene(anywidget.AnyWidget):
                               f"set_property, set_animation or delete, got {kind!r}")
         self._store.pop(key, None)  # a changed entry moves to the end: the view replays
         self._store[key] = umsgpack.packb(data)
-        with self.hold_sync():
-            self._commands = list(self._store.values())
-            if kind == "delete":
-                self._sync_poses()
+        if kind == "delete":
+            self._changed("commands", "poses")
+        else:
+            self._changed("commands")
 
     def set_poses(self, poses: dict[str, np.ndarray]) -> None:
         """Set many paths' transforms (``path -> 4x4``) in one message."""
         self._check_open()
         for path, T in poses.items():
             self._pose_of[_key_path(path)] = np.asarray(T, dtype=np.float32)
-        self._sync_poses()
+        self._changed("poses")
 
-    def _sync_poses(self) -> None:
-        paths = list(self._pose_of)
-        if paths:
-            stack = np.stack([self._pose_of[p] for p in paths])  # (n, 4, 4)
-            data = np.ascontiguousarray(stack.transpose(0, 2, 1), dtype=np.float32).tobytes()
-        else:
-            data = b""
+    def _changed(self, *parts: str) -> None:
+        """Set the synced traits of ``parts`` ("commands", "poses") from the store now, or
+        when the outermost :meth:`batch` closes (each list is built and sent once)."""
+        self._pending.update(parts)
+        if self._batches:
+            return
+        parts, self._pending = self._pending, set()
         with self.hold_sync():
-            self._pose_paths = paths
-            self._poses = data
-            self._seq = self._seq + 1
+            if "commands" in parts:
+                self._commands = list(self._store.values())
+            if "poses" in parts:
+                paths = list(self._pose_of)
+                if paths:
+                    stack = np.stack([self._pose_of[p] for p in paths])  # (n, 4, 4)
+                    data = np.ascontiguousarray(stack.transpose(0, 2, 1),
+                                                dtype=np.float32).tobytes()
+                else:
+                    data = b""
+                self._pose_paths = paths
+                self._poses = data
+                self._seq = self._seq + 1
 
     def close(self) -> None:
         """Close the widget (its views leave the page) and its layout widget."""
@@ -267,9 +279,14 @@ class Scene(anywidget.AnyWidget):
 
     @contextlib.contextmanager
     def batch(self):
-        """Send everything done inside as one message (``hold_sync``)."""
-        with self.hold_sync():
+        """Send everything done inside as one message."""
+        self._batches += 1
+        try:
             yield self
+        finally:
+            self._batches -= 1
+            if self._pending and not self._batches:
+                self._changed()
 
     # -- copies and pages ------------------------------------------------------------------
     def copy(self, frozen: bool = True) -> Scene:
@@ -277,9 +294,7 @@ class Scene(anywidget.AnyWidget):
         other = Scene(height=self.height)
         other._store = dict(self._store)
         other._pose_of = dict(self._pose_of)
-        with other.hold_sync():
-            other._commands = list(other._store.values())
-            other._sync_poses()
+        other._changed("commands", "poses")
         other.frozen = frozen
         return other
 
@@ -338,5 +353,11 @@ def static_page(states: list[dict], title: str = "kinlib scene") -> str:
     holders = "\n".join(scene_holder(s) for s in states)
     return (f"<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{html.escape(title)}"
             f"</title><style>body {{ margin: 0; }}</style></head><body>\n{holders}\n"
-            f"<script>{bundle_source()}</script>\n<script>{scene_js()}\n"
-            "kinlibStaticScenes(MeshCat, document);</script>\n</body></html>\n")
+            f"{inline_viewer()}</body></html>\n")
+
+
+def inline_viewer() -> str:
+    """The scripts that turn a page's scene holders into viewers, inline (the meshcat
+    bundle and kinlib's scene view): once per page, after its content."""
+    return (f"<script>{bundle_source()}</script>\n<script>{scene_js()}\n"
+            "kinlibStaticScenes(MeshCat, document);</script>\n")

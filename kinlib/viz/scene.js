@@ -52,8 +52,7 @@ function kinlibMountScene(MeshCat, el, height) {
   };
   const resize = new ResizeObserver(() => viewer.set_3d_pane_size());
   resize.observe(pane);
-  const stats = { commands: 0, poses: 0, drawn: 0, renders: 0, ticks: 0, seq: -1, drawnSeq: -1,
-                  log: [] };
+  const stats = { commands: 0, poses: 0, drawn: 0, renders: 0, ticks: 0, seq: -1, log: [] };
   let pending = false;
   let frame = 0;
   function tick() {
@@ -68,7 +67,6 @@ function kinlibMountScene(MeshCat, el, height) {
         // a pose update reached the screen
         pending = false;
         stats.drawn += 1;
-        stats.drawnSeq = stats.seq;
         if (stats.log.length < 100000) stats.log.push([stats.seq, Date.now()]);
         wrap.dataset.framesDrawn = String(stats.drawn);
         wrap.dataset.lastSeqDrawn = String(stats.seq);
@@ -78,7 +76,6 @@ function kinlibMountScene(MeshCat, el, height) {
   frame = requestAnimationFrame(tick);
   const controller = {
     viewer,
-    element: wrap,
     stats,
     commands(list) {
       for (const c of list) viewer.handle_command_bytearray(kinlibBytes(c));

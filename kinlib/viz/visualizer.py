@@ -31,7 +31,7 @@ from ..transforms import check_transform, transform_inverse
 from . import _scene
 from ._geometry import axis_transforms, decompose, segment_transforms
 from ._scene import mg
-from ._widget import Scene, static_page
+from ._widget import Scene, check_height, static_page
 
 __all__ = ["RobotVisualizer", "REVOLUTE_COLOR", "PRISMATIC_COLOR", "LINK_COLOR"]
 
@@ -44,13 +44,6 @@ _ROTX_90 = np.array([[1.0, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]])
 
 def _clean(name: str) -> str:
     return str(name).replace("/", "_") or "_"
-
-
-def _height(height) -> int:
-    """A cell height in pixels: a positive whole number."""
-    if isinstance(height, bool) or not isinstance(height, int | np.integer) or height <= 0:
-        raise KinlibError(f"height: expected a positive whole number of pixels, got {height!r}")
-    return int(height)
 
 
 def _robot_reach(robot: Robot, q0: np.ndarray) -> float:
@@ -298,14 +291,14 @@ class RobotVisualizer:
         """The viewer in a notebook cell (make it the cell's last expression): the scene
         widget, ``height`` pixels tall, which follows every later change. Saved with the
         notebook's widget state, it shows again in an exported page."""
-        self.vis.height = _height(height)
+        self.vis.height = check_height(height)
         return self.vis
 
     def snapshot(self, height: int = 400):
         """The scene as it is now, as a frozen copy (a widget that later changes do not
         reach): for a picture that should stay, e.g. before the robot moves on."""
         copy = self.vis.copy(frozen=True)
-        copy.height = _height(height)
+        copy.height = check_height(height)
         return copy
 
     def _repr_mimebundle_(self, **kwargs):
