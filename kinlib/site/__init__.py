@@ -32,7 +32,7 @@ from multiprocessing import get_context
 from pathlib import Path
 
 from ..errors import KinlibError
-from ._widgets import SCENE_SCRIPTS, freeze_widgets
+from ._widgets import freeze_widgets, with_viewer
 
 __all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "export_page",
            "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
@@ -188,9 +188,7 @@ def export_page(nb, page: PageInfo, pages: list[PageInfo]) -> str:
                             "nav": _nav(pages, here)}}
     body, _ = exporter.from_notebook_node(nb, resources=resources)
     body = offline_players(body)
-    if 'class="kl-scene-static"' in body:  # the viewer, once per page, after the content
-        at = body.rindex("</body>")
-        body = body[:at] + SCENE_SCRIPTS + body[at:]
+    body = with_viewer(body)  # the viewer, once per page, after the content
     leaks = re.findall(r'<(?:script|link)[^>]+(?:src|href)="(https?:[^"]+)"', body)
     if leaks:
         raise KinlibError(f"{page.name}: the page would load {leaks[0]} from the network")

@@ -13,7 +13,7 @@ from __future__ import annotations
 import html
 
 __all__ = ["WIDGET_VIEW", "WIDGET_STATE", "render_widget", "freeze_widgets", "scene_state",
-           "SCENE_SCRIPTS"]
+           "SCENE_SCRIPTS", "with_viewer"]
 
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 WIDGET_STATE = "application/vnd.jupyter.widget-state+json"
@@ -53,6 +53,14 @@ def _output_html(output: dict) -> str:
 SCENE_SCRIPTS = ('<script src="_static/meshcat.min.js"></script>\n'
                  '<script src="_static/kinlib-scene.js"></script>\n'
                  '<script>kinlibStaticScenes(MeshCat, document);</script>\n')
+
+
+def with_viewer(page: str, scripts: str = SCENE_SCRIPTS) -> str:
+    """``page`` with ``scripts`` (the viewer) before ``</body>`` if it holds a scene."""
+    if 'class="kl-scene-static"' not in page:
+        return page
+    at = page.rindex("</body>")
+    return page[:at] + scripts + page[at:]
 
 
 def scene_state(model: dict) -> dict:

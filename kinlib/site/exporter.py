@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from nbconvert.exporters import HTMLExporter
 
-from ._widgets import freeze_widgets
+from ._widgets import freeze_widgets, with_viewer
 
 __all__ = ["KinlibHTMLExporter"]
 
@@ -31,12 +31,7 @@ class KinlibHTMLExporter(HTMLExporter):
         return nb, resources
 
     def from_notebook_node(self, nb, resources=None, **kw):
-        from ..viz._widget import bundle_source, scene_js
+        from ..viz._widget import inline_viewer
 
         output, resources = super().from_notebook_node(nb, resources, **kw)
-        if 'class="kl-scene-static"' in output:  # the viewer, once, after the content
-            at = output.rindex("</body>")
-            output = (output[:at] + f"<script>{bundle_source()}</script>\n<script>"
-                      f"{scene_js()}\nkinlibStaticScenes(MeshCat, document);</script>\n"
-                      + output[at:])
-        return output, resources
+        return with_viewer(output, inline_viewer()), resources

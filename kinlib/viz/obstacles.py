@@ -23,6 +23,12 @@ def _cross(o, a, b) -> float:
     return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
 
 
+def _signed_area(v: np.ndarray) -> float:
+    """The shoelace area of the closed outline ``v`` (M, 2): > 0 counter-clockwise."""
+    w = np.roll(v, -1, axis=0)
+    return 0.5 * float(np.sum(v[:, 0] * w[:, 1] - w[:, 0] * v[:, 1]))
+
+
 def triangulate(vertices) -> np.ndarray:
     """Triangles (K, 3) of vertex indices covering the simple polygon ``vertices`` (M, 2),
     counter-clockwise (ear clipping).
@@ -32,8 +38,7 @@ def triangulate(vertices) -> np.ndarray:
     """
     v = np.asarray(Polygon(vertices).vertices, dtype=float)
     idx = list(range(len(v)))
-    area = 0.5 * sum(_cross((0, 0), v[i], v[(i + 1) % len(v)]) for i in idx)
-    if area < 0:
+    if _signed_area(v) < 0:
         idx.reverse()
     out = []
     while len(idx) > 3:
@@ -63,7 +68,7 @@ def prism(vertices, height: float):
     points = np.vstack([np.c_[v, np.full(n, -h)], np.c_[v, np.full(n, h)]])
     tri = triangulate(v)
     faces = [tri[:, ::-1], tri + n]  # bottom facing down, top facing up
-    ccw = 0.5 * sum(_cross((0, 0), v[i], v[(i + 1) % n]) for i in range(n)) > 0
+    ccw = _signed_area(v) > 0
     for i in range(n):
         j = (i + 1) % n
         a, b = (i, j) if ccw else (j, i)
