@@ -39,6 +39,7 @@ from browser_helpers import (
     wait_for_mask,
 )
 from lab_harness import Lab
+from test_lab import MOVED, run_all
 
 BASE_URL = "/user/student/"
 VIEWER_CELL = """from kinlib.robots import puma560
@@ -56,9 +57,6 @@ viz2.jupyter_cell(height=240)"""
 WIDGETS_CELL = ("from ipywidgets.widgets.widget import _instances  # the kernel's live widgets\n"
                 "print('WIDGETS', len(_instances))")
 NOTEBOOK = ".jp-NotebookPanel"
-PROMPTS = f"""() => [...document.querySelectorAll('{NOTEBOOK} .jp-CodeCell .jp-InputPrompt')]
-  .map(p => p.innerText.trim())"""
-MOVED = 200
 
 
 @pytest.fixture(scope="module", params=["lab", "notebook"])
@@ -126,17 +124,8 @@ def open_and_run(hub: Lab, page) -> list[str]:
         page.wait_for_timeout(250)
     page.wait_for_timeout(1000)  # the app settles
     before_run = list(page.errors)
-    for _attempt in range(3):
-        page.locator(".lm-MenuBar-itemLabel", has_text="Run").first.click()
-        page.locator(".lm-Menu-item:not(.lm-mod-disabled) .lm-Menu-itemLabel",
-                     has_text="Run All Cells").first.click()
-        try:
-            page.wait_for_function(f"() => ({PROMPTS})()[0] !== '[ ]:'", timeout=10_000)
-            break
-        except Exception:  # the menu was not ready: again
-            page.keyboard.press("Escape")
-    page.wait_for_function(f"() => ({PROMPTS})().every(p => /^\\[\\d+\\]:$/.test(p))",
-                           timeout=120_000)
+    prompts = run_all(page, "viewer.ipynb")  # the same menus in JupyterLab and Notebook 7
+    assert all(re.fullmatch(r"\[\d+\]:", p) for p in prompts), f"cells that did not run: {prompts}"
     return before_run
 
 
@@ -158,7 +147,7 @@ def run_cell(page, index: int) -> None:
           return /^\\[\\d+\\]:$/.test(p) && p !== {json.dumps(before)}; }}""", timeout=60_000)
 
 
-def delete_from_kernel(hub: Lab, code: str) -> None:
+def run_in_kernel(hub: Lab, code: str) -> None:
     """Run ``code`` in the notebook's kernel through a second client (as another cell
     would): what it changes reaches the page over the widget's comm."""
     from jupyter_client import BlockingKernelClient
@@ -237,7 +226,7 @@ def test_the_viewer_works_through_the_server_alone(hub, browser, tmp_path):
             png = assert_robot_drawn(scene, "after re-running", tmp_path / "rerun.png")
 
         # the control: remove the robot in the kernel; the view must empty
-        delete_from_kernel(hub, "viz.delete()")
+        run_in_kernel(hub, "viz.delete()")
         empty_png, empty = wait_for_mask(element_shooter(scene), solid_axes,
                                          lambda m: m.sum() <= EMPTY, timeout=20)
         (tmp_path / "emptied.png").write_bytes(empty_png)
