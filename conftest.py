@@ -14,8 +14,11 @@ from ``pytest_collection_finish`` when a collected test asks for it: ``python -m
 runs (one notebook at a time) while the other tests run, and the ``site`` fixture (here)
 waits for it. Under pytest-xdist (``make test`` runs two workers) the build is shared: the
 controller makes its folder (``$KINLIB_TEST_SITE``), the first worker to collect starts it,
-and whichever worker runs the site's tests waits for its exit code there.
-``pytest_unconfigure`` stops it if it is still running.
+and whichever worker runs the site's tests waits for its exit code there. The build
+belongs to the session, not to the worker that started it (a worker whose share of the
+tests ends early must not take the build with it): it ends when it is done, when the
+session's first process (the xdist controller, or pytest itself) exits, whose
+``pytest_unconfigure`` stops it, or when that process dies (the build's wrapper watches it).
 """
 
 from __future__ import annotations
@@ -30,8 +33,6 @@ import time
 from pathlib import Path
 
 import pytest
-
-from kinlib._process import die_with
 
 ROOT = Path(__file__).resolve().parent
 INSTRUCTOR = ROOT / "instructor"
@@ -51,14 +52,26 @@ def _hypothesis_profile() -> None:
 
 SITE_ENV = "KINLIB_TEST_SITE"  # the session's site-build folder, shared with xdist workers
 #: run by the build's own process: the site, its log, and its exit code in a file when done
-SITE_BUILD = """import subprocess, sys
-folder, jobs = sys.argv[1], sys.argv[2]
+SITE_OWNER_ENV = "KINLIB_TEST_SESSION_PID"  # the session's first process: owns the build
+#: run by the build's own process (a new process group, whose leader writes ``pid``): the
+#: site, its log, and its exit code in a file when done; ended if the owner dies
+SITE_BUILD = """import os, subprocess, sys, time
+folder, jobs, owner = sys.argv[1], sys.argv[2], int(sys.argv[3])
+with open(folder + "/pid", "w") as fh:
+    fh.write(str(os.getpid()))
 with open(folder + "/build.log", "wb") as log:
-    rc = subprocess.call([sys.executable, "-m", "kinlib.site", "--out", folder + "/site",
-                          "--jobs", jobs], stdout=log, stderr=subprocess.STDOUT)
+    build = subprocess.Popen([sys.executable, "-m", "kinlib.site", "--out", folder + "/site",
+                              "--jobs", jobs], stdout=log, stderr=subprocess.STDOUT)
+    while build.poll() is None:
+        try:
+            os.kill(owner, 0)
+        except ProcessLookupError:  # the test session is gone: so is its build
+            build.kill()
+            build.wait()
+            sys.exit(1)
+        time.sleep(0.5)
 with open(folder + "/rc.tmp", "w") as fh:
-    fh.write(str(rc))
-import os
+    fh.write(str(build.returncode))
 os.replace(folder + "/rc.tmp", folder + "/rc")
 """
 
@@ -67,6 +80,7 @@ def pytest_configure(config):
     _hypothesis_profile()
     if hasattr(config, "workerinput"):
         return  # an xdist worker: the controller made the folder
+    os.environ[SITE_OWNER_ENV] = str(os.getpid())
     if not os.environ.get(SITE_ENV):
         _state["site_folder"] = tempfile.mkdtemp(prefix="kinlib-site-")
         os.environ[SITE_ENV] = _state["site_folder"]
@@ -74,17 +88,16 @@ def pytest_configure(config):
 
 def _start_site_build(jobs: int) -> None:
     """``python -m kinlib.site`` into the session's folder, in the background, once per
-    session whichever process asks first (it dies with that process); when it ends, the
-    folder holds ``build.log`` and ``rc``."""
+    session whichever process asks first (owned by the session, see above); when it ends,
+    the folder holds ``build.log`` and ``rc``."""
     folder = os.environ[SITE_ENV]
     try:
         os.close(os.open(os.path.join(folder, "started"), os.O_CREAT | os.O_EXCL))
     except FileExistsError:
         return  # another process of the session started it
-    proc = subprocess.Popen([sys.executable, "-c", SITE_BUILD, folder, str(jobs)],
-                            stdin=subprocess.DEVNULL, start_new_session=True,
-                            cwd=os.path.dirname(__file__), preexec_fn=die_with(os.getpid()))
-    _state["site_build"] = proc
+    _state["site_build"] = subprocess.Popen(  # kept, to reap it if it is ours
+        [sys.executable, "-c", SITE_BUILD, folder, str(jobs), os.environ[SITE_OWNER_ENV]],
+        stdin=subprocess.DEVNULL, start_new_session=True, cwd=os.path.dirname(__file__))
 
 
 def pytest_collection_finish(session):
@@ -145,12 +158,25 @@ def _judge_instructor_cell(item) -> None:
         assert seen == expected, f"{path.name}: exercises checked {seen}, expected {expected}"
 
 
+def _stop_site_build(folder: Path) -> None:
+    """End the session's site build (its whole process group) if it still runs."""
+    try:
+        leader = int((folder / "pid").read_text())
+    except (OSError, ValueError):
+        return  # never started
+    if not (folder / "rc").exists():
+        try:
+            os.killpg(leader, signal.SIGKILL)  # the wrapper and the build under it
+        except ProcessLookupError:
+            pass
+
+
 def pytest_unconfigure(config):
-    build = _state.pop("site_build", None)
-    if build is not None and build.poll() is None:
-        os.killpg(build.pid, signal.SIGKILL)  # the wrapper and the build under it
-        build.wait()
     folder = _state.pop("site_folder", None)
-    if folder is not None:
+    if folder is not None:  # the session's owner: the build ends with it
+        _stop_site_build(Path(folder))
         shutil.rmtree(folder, ignore_errors=True)
         os.environ.pop(SITE_ENV, None)
+    build = _state.pop("site_build", None)
+    if build is not None and build.poll() is None and folder is not None:
+        build.wait()  # our own child, killed above: reaped

@@ -1,7 +1,7 @@
 """Child processes that cannot outlive their parent (Linux's parent-death signal).
 
 Used where kinlib starts processes of its own: the grader's sandbox, and the test
-harness's JupyterLab servers and site builds. A child started with
+harness's JupyterLab servers. A child started with
 ``preexec_fn=die_with(os.getpid())`` gets SIGTERM when that parent dies, however it dies
 (even by SIGKILL), so nothing is left running behind a killed kernel or test run.
 """
