@@ -1,11 +1,34 @@
 """The student process and the wire format, below the grader: limits, deaths, bad data."""
 
+import secrets
+
 import numpy as np
 import pytest
 from processes import wait_gone
 
-from kinlib.grade._sandbox import Worker, WorkerDied, WorkerTimeout
+from kinlib.grade._bwrap import find_sandbox
+from kinlib.grade._sandbox import BLOCKED, Worker, WorkerDied, WorkerTimeout
 from kinlib.grade._wire import Odd, WireError, decode, dumps, encode, loads
+
+
+@pytest.fixture(scope="module")
+def sandbox():
+    return find_sandbox(BLOCKED)
+
+
+def host_pids(marker: str) -> list[int]:
+    """Processes on this machine (outside any sandbox) whose command line holds ``marker``."""
+    import os
+
+    found = []
+    for pid in os.listdir("/proc"):
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as fh:
+                if marker.encode() in fh.read():
+                    found.append(int(pid))
+        except (OSError, ValueError):
+            pass
+    return found
 
 
 def run_cells(worker, *sources, timeout=30.0):
@@ -18,20 +41,20 @@ def run_cells(worker, *sources, timeout=30.0):
             return [e for e in events if e.get("phase") == "end"]
 
 
-def test_memory_limit_stops_a_growing_allocation():
+def test_memory_limit_stops_a_growing_allocation(sandbox):
     # 2.5 GB in 250 MB steps: fine for this machine, over the 1 GiB limit given here
     grow = ("import numpy as np\nkeep = []\nfor _ in range(10):\n"
             "    keep.append(np.ones(31_250_000))")
-    with Worker(memory_mb=1024) as w:
+    with Worker(sandbox=sandbox, memory_mb=1024) as w:
         (end,) = run_cells(w, grow)
         assert not end["ok"] and "MemoryError" in end["error"]
-    with Worker(memory_mb=4096) as w:  # the control: the same cell runs under a higher limit
+    with Worker(sandbox=sandbox, memory_mb=4096) as w:  # the control: a higher limit
         (end,) = run_cells(w, grow)
         assert end["ok"], end
 
 
-def test_blocked_modules_and_cwd():
-    with Worker() as w:
+def test_blocked_modules_and_cwd(sandbox):
+    with Worker(sandbox=sandbox) as w:
         ends = run_cells(w, "import kinlib", "from scipy.spatial.transform import Rotation",
                          "import sympy, matplotlib.pyplot as plt\nplt.plot([1, 2])",
                          "import os\nassert os.getcwd() == os.environ['HOME']")
@@ -39,19 +62,27 @@ def test_blocked_modules_and_cwd():
         assert "cannot be used in this assignment" in ends[0]["error"]
 
 
-def test_timeout_and_death_are_reported_and_kill_the_group():
-    with Worker() as w:
+@pytest.mark.parametrize("sandboxed", [True, False])
+def test_timeout_and_death_are_reported_and_kill_everything(sandbox, sandboxed):
+    marker = f"600.{secrets.randbelow(10**9):09d}"  # a sleep this machine runs only here
+    with Worker(sandbox=sandbox if sandboxed else None) as w:
         w.request({"op": "cells", "cells": [[0, "import subprocess, time\n"
-                                                "child = subprocess.Popen(['sleep', '600'])\n"
-                                                "open('pid', 'w').write(str(child.pid))\n"
+                                                f"child = subprocess.Popen(['sleep', '{marker}'])\n"
                                                 "while True: time.sleep(1)"]]})
         assert w.receive(10)["phase"] == "start"
+        pids = []
+        for _ in range(100):  # the grandchild, seen from outside
+            pids = host_pids(marker)
+            if pids:
+                break
+            import time
+            time.sleep(0.05)
+        assert len(pids) == 1, "the cell's child process did not start"
         with pytest.raises(WorkerTimeout):
-            w.receive(3.0)
+            w.receive(2.0)
         assert not w.alive
-        pid = int(open(f"{w.dir}/pid").read())
-    assert wait_gone(pid), "the grandchild outlived the killed process group"
-    with Worker() as w:
+    assert wait_gone(pids[0]), "the grandchild outlived the killed worker"
+    with Worker(sandbox=sandbox if sandboxed else None) as w:
         w.request({"op": "cells", "cells": [[0, "import os\nos._exit(7)"]]})
         w.receive(10)
         with pytest.raises(WorkerDied, match="exited with code 7"):

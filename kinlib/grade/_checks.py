@@ -37,6 +37,11 @@ class Check:
     atol: float = 1e-6
     time_limit: float = 5.0  # seconds per case
     on_error: Callable | None = None  # (args, error text) -> a hint for the student, or None
+    # cases whose right answer a function that does nothing could give ("no path"): args ->
+    # bool. Right answers to them earn credit only when the other cases are mostly right
+    # (none below 50 % of those right, in full from 75 %); ``trivial`` names them.
+    is_trivial: Callable | None = None
+    trivial: str = "to the trivial cases"
 
     @property
     def rule(self) -> Rule:

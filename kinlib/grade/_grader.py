@@ -1,32 +1,61 @@
 """Grade a submission: run it in a student process, call its functions, judge the answers.
 
-The student's process (:mod:`kinlib.grade._sandbox`) only ever sends plain data; every
-comparison happens here, with kinlib's reference in this process, so nothing the
-submission does to numpy, kinlib or its own process can change a verdict. A cell that
-hangs or ends the process is skipped on the next start; a case that hangs or ends the
-process fails, the rest of that function's cases are not run, and the next function gets
-a fresh process.
+The student's process (:mod:`kinlib.grade._sandbox`, inside the sandbox of
+:mod:`kinlib.grade._bwrap`) only ever sends plain data; every comparison happens here, with
+kinlib's reference in this process, so nothing the submission does to numpy, kinlib or its
+own process can change a verdict. A cell that hangs or ends the process is skipped on the
+next start; a case that hangs or ends the process fails, the rest of that function's cases
+are not run, and the next function gets a fresh process. Every wait has a deadline that
+messages cannot extend: per cell, per case, per check, and for the whole submission.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import secrets
 import time
 from collections import Counter
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor, as_completed
 from pathlib import Path
 
 from ..errors import KinlibError
+from ._bwrap import Sandbox, find_sandbox
 from ._checks import Assignment, Check, Verdict, fmt
-from ._sandbox import Worker, WorkerDied, WorkerTimeout
+from ._sandbox import BLOCKED, Worker, WorkerDied, WorkerTimeout
 from ._wire import WireError, decode, encode
 
-__all__ = ["grade", "grade_many", "format_report", "load_assignment", "assignment_names"]
+__all__ = ["grade", "grade_many", "format_report", "load_assignment", "assignment_names",
+           "summary", "cases_seed"]
 
 MAX_RESTARTS = 12
 EXAMPLES = 3
+#: seconds one submission may take in all, whatever its cells and cases do
+SUBMISSION_TIMEOUT = 300.0
+UNSANDBOXED = ("graded WITHOUT the sandbox (--unsandboxed): the submission's code ran with "
+               "the grader's own rights and could have read or changed anything they reach, "
+               "this result included")
+
+
+class OutOfTime(RuntimeError):
+    """The submission used all of its time (:data:`SUBMISSION_TIMEOUT`)."""
+
+
+def cases_seed(secret: str | bytes, assignment: str) -> int:
+    """The seed of the graded cases, from the instructor's secret (one per assignment).
+
+    >>> cases_seed("correct horse", "01_rotations") == cases_seed(b"correct horse", "01_rotations")
+    True
+    >>> cases_seed("correct horse", "01_rotations") != cases_seed("correct horse", "04_planning")
+    True
+    """
+    key = secret.encode() if isinstance(secret, str) else bytes(secret)
+    if not key.strip():
+        raise KinlibError("secret: expected a non-empty secret (a file's contents or "
+                          "KINLIB_GRADE_SECRET), got an empty one")
+    digest = hashlib.sha256(b"kinlib-grade\0" + key.strip() + b"\0" + assignment.encode())
+    return int.from_bytes(digest.digest()[:8], "little")
 
 
 def assignment_names() -> list[str]:
@@ -75,8 +104,10 @@ def _which(nb, path: Path, assignment: str | None) -> str:
 class _Session:
     """The student's process for one submission, restarted when it hangs or dies."""
 
-    def __init__(self, cells, cell_timeout: float, memory_mb: int):
+    def __init__(self, cells, cell_timeout: float, memory_mb: int, sandbox: Sandbox | None,
+                 deadline: float):
         self.cells, self.cell_timeout, self.memory_mb = cells, cell_timeout, memory_mb
+        self.sandbox, self.deadline = sandbox, deadline
         self.skip: set[int] = set()
         self.reports: dict[int, dict] = {}
         self.worker: Worker | None = None
@@ -87,11 +118,13 @@ class _Session:
         while self.worker is None or not self.worker.alive:
             if self.worker is not None:
                 self.worker.close()
+            if time.monotonic() >= self.deadline:
+                raise OutOfTime("the submission used all of its time")
             if self.restarts > MAX_RESTARTS:
                 raise WorkerDied(f"the submission's process was restarted {MAX_RESTARTS} "
                                  "times; giving up")
             self.restarts += 1
-            self.worker = Worker(memory_mb=self.memory_mb)
+            self.worker = Worker(sandbox=self.sandbox, memory_mb=self.memory_mb)
             self._run_cells()
         return self.worker
 
@@ -104,7 +137,7 @@ class _Session:
         order = [c[0] for c in batch]  # a start is taken only for the next cell, an end
         sent, nxt = set(order), 0      # only for the cell that started: one report each
         current, cell_end, last = None, None, None  # last: the cell that started last
-        end = time.monotonic() + self.cell_timeout * (len(batch) + 1)
+        end = min(time.monotonic() + self.cell_timeout * (len(batch) + 1), self.deadline)
 
         def index(m) -> int | None:
             i = m.get("i")
@@ -116,7 +149,7 @@ class _Session:
                 now = time.monotonic()
                 due = min(end, cell_end) if cell_end is not None else end
                 if now >= due:
-                    raise WorkerTimeout("the cells took too long")
+                    raise WorkerTimeout("the cells took too long")  # (or all its time)
                 m = w.receive(min(self.cell_timeout, due - now))
                 ev, i = m.get("ev"), index(m)
                 if ev == "cell" and m.get("phase") == "start":
@@ -163,8 +196,11 @@ def _run_check(session: _Session, check: Check, cases: list[tuple]) -> list[tupl
                    "cases": [encode(c) for c in cases]})
     except WorkerDied as exc:
         return [("died", str(exc))] * len(cases)
+    except OutOfTime:
+        return [("not run", _out_of_time(session))] * len(cases)
     k = 0
-    end = time.monotonic() + check.time_limit * (len(cases) + 1)  # a flood of replies too
+    # the whole call (a flood of replies too), and the submission's own deadline
+    end = min(time.monotonic() + check.time_limit * (len(cases) + 1), session.deadline)
     try:
         while True:
             left = end - time.monotonic()
@@ -193,10 +229,18 @@ def _run_check(session: _Session, check: Check, cases: list[tuple]) -> list[tupl
                 out[k] = ("error", f"raised {str(m.get('error', ''))[:400]}{where}")
             k += 1
     except WorkerTimeout:
-        out[k] = ("timeout", f"took longer than {check.time_limit:g} s (stopped)")
+        if time.monotonic() >= session.deadline:
+            out[k:] = [("not run", _out_of_time(session))] * (len(cases) - k)
+        else:
+            out[k] = ("timeout", f"took longer than {check.time_limit:g} s (stopped)")
     except WorkerDied as exc:
         out[k] = ("died", f"{exc} while running this case")
     return out
+
+
+def _out_of_time(session: _Session) -> str:
+    return (f"not run: the submission used all of its time ({session.budget:g} s for all "
+            "cells and cases together)")
 
 
 def _judge(check: Check, args: tuple, status: str, payload) -> Verdict:
@@ -220,6 +264,13 @@ def _judge(check: Check, args: tuple, status: str, payload) -> Verdict:
                                            f"{type(exc).__name__}: {str(exc)[:200]}")
 
 
+def _is_trivial(check: Check, case) -> bool:
+    try:
+        return bool(check.is_trivial(case))
+    except Exception:  # a reference that fails on a case: judge that case like any other
+        return False
+
+
 def _summarise(check: Check, cases, results, verdicts) -> dict:
     passed = sum(v.ok for v in verdicts)
     fails = [(c, r, v) for c, r, v in zip(cases, results, verdicts, strict=True) if not v.ok]
@@ -235,34 +286,63 @@ def _summarise(check: Check, cases, results, verdicts) -> dict:
                          "expected": None if v.expected is None else fmt(v.expected),
                          "got": fmt(payload) if status == "value" else None})
     total = len(cases)
-    score = round(check.points * passed / total, 2) if total else 0.0
+    credit = passed
+    if check.is_trivial is not None:  # right "trivial" answers count only beside right others
+        trivial = [_is_trivial(check, c) for c in cases]
+        main = [v.ok for v, t in zip(verdicts, trivial, strict=True) if not t]
+        easy = sum(v.ok for v, t in zip(verdicts, trivial, strict=True) if t)
+        rate = sum(main) / len(main) if main else 1.0
+        weight = min(1.0, max(0.0, (rate - 0.5) / 0.25))
+        credit = sum(main) + weight * easy
+        if easy and weight < 1:
+            diagnoses.append({"key": "trivial", "count": easy, "message": (
+                f"{easy} right answer(s) {check.trivial} count {weight:.0%}: they earn credit "
+                f"only when most other cases are right (here {sum(main)} of {len(main)}; "
+                "none below 50 %, in full from 75 %)")})
+    score = round(check.points * credit / total, 2) if total else 0.0
     return {"function": check.function, "title": check.title, "points": check.points,
             "score": score, "passed": passed, "total": total, "diagnoses": diagnoses,
             "examples": examples}
 
 
 def grade(submission, assignment: str | None = None, *, seed: int = 0,
-          cell_timeout: float = 60.0, memory_mb: int = 4096) -> dict:
+          secret: str | bytes | None = None, cell_timeout: float = 60.0,
+          memory_mb: int = 4096, submission_timeout: float = SUBMISSION_TIMEOUT,
+          unsandboxed: bool = False) -> dict:
     """Grade one notebook; a JSON-ready dict (see :mod:`kinlib.grade`).
+
+    The cases come from ``seed`` (public: a student can run the same ones), or, if
+    ``secret`` is given, from the instructor's secret (:func:`cases_seed`). The submission's
+    code runs in the sandbox (:mod:`kinlib.grade._bwrap`); with no sandbox on this machine
+    this raises :class:`~kinlib.grade._bwrap.SandboxUnavailable` (naming the fix) unless
+    ``unsandboxed=True``, which marks the result (``"sandbox": null`` and a ``warning``).
 
     Never raises for anything the submission does. If the file cannot be read or its
     assignment cannot be told, ``graded`` is False and ``error`` says why.
     """
+    sandbox = None if unsandboxed else find_sandbox(BLOCKED)
     path = Path(submission)
     result = {"submission": str(path), "assignment": assignment, "graded": False,
-              "error": None, "score": 0.0, "max_score": 0.0, "checks": [], "cells": []}
+              "error": None, "score": 0.0, "max_score": 0.0, "checks": [], "cells": [],
+              "sandbox": None if sandbox is None else sandbox.describe()}
+    if sandbox is None:
+        result["warning"] = UNSANDBOXED
     try:
         nb = _read(path)
         name = _which(nb, path, assignment)
         spec = load_assignment(name)
+        seed = cases_seed(secret, name) if secret is not None else int(seed)
     except KinlibError as exc:
         result["error"] = str(exc)
         return result
-    result.update(assignment=name, title=spec.title, max_score=spec.max_score)
+    result.update(assignment=name, title=spec.title, max_score=spec.max_score,
+                  cases="secret" if secret is not None else f"public (seed {seed})")
     cells = [[i, c.get("source")] for i, c in enumerate(nb.cells)
              if isinstance(c, dict) and c.get("cell_type") == "code"
              and isinstance(c.get("source"), str)]  # a cell without source is left out
-    session = _Session(cells, cell_timeout, memory_mb)
+    session = _Session(cells, cell_timeout, memory_mb, sandbox,
+                       time.monotonic() + submission_timeout)
+    session.budget = submission_timeout
     try:
         for check in spec.checks:
             cases = check.make_cases(seed)
@@ -278,10 +358,20 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
 
 
 def grade_many(submissions, assignment: str | None = None, *, jobs: int | None = None,
-               **kwargs) -> list[dict]:
-    """Grade several notebooks in parallel (``jobs`` student processes at a time)."""
+               on_result=None, **kwargs) -> list[dict]:
+    """Grade several notebooks in parallel (``jobs`` student processes at a time); the
+    results in the order of ``submissions``. ``on_result(result)`` is called (in this
+    thread) for each one as soon as it is known. Keyword arguments go to :func:`grade`.
+
+    The sandbox is looked for once, first: without one this raises
+    :class:`~kinlib.grade._bwrap.SandboxUnavailable` before anything runs (unless
+    ``unsandboxed=True``).
+    """
     paths = list(submissions)
+    if not kwargs.get("unsandboxed"):
+        find_sandbox(BLOCKED)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths) or 1))
+
     def one(path):  # one submission's failure never loses another's result
         try:
             return grade(path, assignment, **kwargs)
@@ -291,8 +381,29 @@ def grade_many(submissions, assignment: str | None = None, *, jobs: int | None =
                              f"{str(exc)[:300]}", "score": 0.0, "max_score": 0.0,
                     "checks": [], "cells": []}
 
+    out: list = [None] * len(paths)
     with ThreadPoolExecutor(max_workers=jobs) as pool:
-        return list(pool.map(one, paths))
+        futures = {pool.submit(one, p): k for k, p in enumerate(paths)}
+        for future in as_completed(futures):
+            out[futures[future]] = result = future.result()
+            if on_result is not None:
+                on_result(result)
+    return out
+
+
+def summary(results: list[dict]) -> str:
+    """One line on a batch: how many were graded, the mean score, and any warnings."""
+    graded = [r for r in results if r["graded"]]
+    line = f"graded {len(graded)} of {len(results)} submission(s)"
+    if len(graded) < len(results):
+        line += f" ({len(results) - len(graded)} could not be graded)"
+    if graded:
+        mean = sum(r["score"] for r in graded) / len(graded)
+        line += f"; mean score {mean:.4g} / {graded[0]['max_score']:g}" if len(
+            {r["max_score"] for r in graded}) == 1 else f"; mean score {mean:.4g}"
+    if any(r.get("warning") for r in results):
+        line += "; WITHOUT the sandbox"
+    return line
 
 
 def _printable(line: str) -> str:
@@ -313,6 +424,8 @@ def format_report(result: dict) -> str:
     """A per-function text report of one :func:`grade` result, for the student; every line
     passes through :func:`_printable`."""
     lines = [f"{result['submission']}"]
+    if result.get("warning"):
+        lines.append(f"  WARNING: {result['warning']}")
     if not result["graded"]:
         return "\n".join(map(_printable, lines + [f"  NOT GRADED: {result['error']}"]))
     lines[0] += f"  ({result['assignment']}: {result.get('title', '')})"

@@ -1,20 +1,23 @@
 """The grader's side of the student's process: start it, limit it, talk to it, kill it.
 
-The student's code runs in ``python -I .../_worker.py`` (see there), a child in
-its own process group and temporary working directory, with
+The student's code runs in ``python -I .../_worker.py`` (see there), inside the bubblewrap
+sandbox of :mod:`kinlib.grade._bwrap` (or, only when the instructor asks for it, without
+one), a child in its own process group, with
 
 - a memory limit (``RLIMIT_AS``), a CPU-time backstop (``RLIMIT_CPU``), a file-size limit
-  (``RLIMIT_FSIZE``) and no core files;
-- one thread for the numeric libraries, ``MPLBACKEND=Agg``, ``HOME`` in the temp directory;
-- ``PR_SET_PDEATHSIG`` (Linux): it dies with the grader.
+  (``RLIMIT_FSIZE``), no core files, and in the sandbox a cap on processes;
+- one thread for the numeric libraries, ``MPLBACKEND=Agg``, ``HOME`` in its own directory;
+- ``PR_SET_PDEATHSIG`` (Linux) and bwrap's ``--die-with-parent``: it dies with the grader.
 
-Every read from it has a deadline; a process that overstays one, or dies, is killed with
-its whole process group, and the caller starts a new one. Replies are JSON lines of at most
+Every read from it has a deadline; a process that overstays one, or dies, is killed
+(SIGKILL, which it cannot catch or ignore) with its whole process group, and in the sandbox
+with its whole PID namespace; the caller starts a new one. Replies are JSON lines of at most
 :data:`kinlib.grade._wire.MAX_LINE` bytes.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import resource
 import selectors
@@ -27,6 +30,7 @@ import time
 from pathlib import Path
 
 from .._process import die_with as _die_with
+from ._bwrap import LIB_DIR, NPROC, Sandbox
 from ._wire import MAX_LINE, WireError, dumps, loads
 
 __all__ = ["Worker", "WorkerDied", "WorkerTimeout", "BLOCKED"]
@@ -61,27 +65,41 @@ def _limits(memory_mb: int, cpu_s: int, parent: int):
 
 
 class Worker:
-    """One student process. Use :meth:`request` / :meth:`receive`; :meth:`kill` always."""
+    """One student process. Use :meth:`request` / :meth:`receive`; :meth:`kill` always.
 
-    def __init__(self, *, memory_mb: int = 4096, cpu_s: int = 600, blocked=BLOCKED):
-        self.dir = tempfile.mkdtemp(prefix="kinlib-grade-")
-        env = {"PATH": os.environ.get("PATH", "/usr/bin:/bin"), "HOME": self.dir,
-               "LANG": "C.UTF-8", "MPLBACKEND": "Agg", "MPLCONFIGDIR": self.dir,
-               "PYTHONHASHSEED": "0", "PYTHONDONTWRITEBYTECODE": "1",
-               **{v: "1" for v in _THREAD_VARS}}
+    ``sandbox``: a :class:`~kinlib.grade._bwrap.Sandbox` (see
+    :func:`~kinlib.grade._bwrap.find_sandbox`), or None for a plain child process with the
+    grader's own rights (the unsandboxed mode: no boundary at all).
+    """
+
+    def __init__(self, *, sandbox: Sandbox | None, memory_mb: int = 4096, cpu_s: int = 600,
+                 blocked=BLOCKED, nproc: int = NPROC):
+        self.sandbox = sandbox
+        self.dir = None if sandbox is not None else tempfile.mkdtemp(prefix="kinlib-grade-")
         to_child_r, self._to_child = os.pipe()
         self._from_child, from_child_w = os.pipe()
+        config = {"fds": [to_child_r, from_child_w], "blocked": list(blocked)}
+        if sandbox is not None:
+            config.update(path=[LIB_DIR], uid=sandbox.uid(), nproc=nproc)
+            argv, cwd, env = sandbox.argv([json.dumps(config)]), "/", {}
+        else:
+            argv = [sys.executable, "-I", str(Path(__file__).with_name("_worker.py")),
+                    json.dumps(config)]
+            cwd = self.dir
+            env = {"PATH": os.environ.get("PATH", "/usr/bin:/bin"), "HOME": self.dir,
+                   "LANG": "C.UTF-8", "MPLBACKEND": "Agg", "MPLCONFIGDIR": self.dir,
+                   "PYTHONHASHSEED": "0", "PYTHONDONTWRITEBYTECODE": "1",
+                   **{v: "1" for v in _THREAD_VARS}}
         try:
             self.proc = subprocess.Popen(
-                [sys.executable, "-I", str(Path(__file__).with_name("_worker.py")),
-                 str(to_child_r), str(from_child_w), ",".join(blocked)],
-                pass_fds=(to_child_r, from_child_w), cwd=self.dir, env=env,
+                argv, pass_fds=(to_child_r, from_child_w), cwd=cwd, env=env,
                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                 start_new_session=True, preexec_fn=_limits(memory_mb, cpu_s, os.getpid()))
         except BaseException:
             for fd in (to_child_r, from_child_w, self._to_child, self._from_child):
                 os.close(fd)
-            shutil.rmtree(self.dir, ignore_errors=True)
+            if self.dir is not None:
+                shutil.rmtree(self.dir, ignore_errors=True)
             raise
         os.close(to_child_r)
         os.close(from_child_w)
@@ -157,14 +175,6 @@ class Worker:
             return f"the process was ended by {name}{hint}"
         return f"the process exited with code {code}"
 
-    def output(self, limit: int = 2000) -> str:
-        """The start of what the student's code printed (stdout and stderr)."""
-        try:
-            with open(os.path.join(self.dir, "output.txt"), "rb") as fh:
-                return fh.read(limit).decode("utf-8", "replace")
-        except OSError:
-            return ""
-
     # -- ending -----------------------------------------------------------------------------
     def kill(self) -> None:
         """End the process group (SIGKILL), reap it, close the pipes. Idempotent."""
@@ -190,7 +200,8 @@ class Worker:
                     os.close(fd)
                 except OSError:
                     pass
-        shutil.rmtree(self.dir, ignore_errors=True)
+        if self.dir is not None:
+            shutil.rmtree(self.dir, ignore_errors=True)
 
     def __enter__(self) -> Worker:
         return self

@@ -1,8 +1,11 @@
 """The student's process: runs a submission's cells, then calls its functions on cases.
 
-Started by :mod:`kinlib.grade._sandbox` as ``python -I path/to/_worker.py IN OUT BLOCKED``
-with two pipe file descriptors: requests arrive on ``IN``, replies leave on ``OUT``, one
-JSON line each (:mod:`kinlib.grade._wire`). The student's own printing goes to a file (fd 1
+Started by :mod:`kinlib.grade._sandbox` as ``python -I [-S] path/to/_worker.py CONFIG``,
+``CONFIG`` a JSON object: ``fds`` (two pipe file descriptors: requests arrive on the first,
+replies leave on the second, one JSON line each, :mod:`kinlib.grade._wire`), ``blocked``
+(modules the submission may not import), ``path`` (directories put first on ``sys.path``:
+the sandbox's libraries), ``uid`` (drop to this uid first: the sandbox run by root) and
+``nproc`` (the cap on processes). The student's own printing goes to ``/dev/null`` (fd 1
 and 2 are redirected before any of their code runs), so it cannot be mistaken for a reply.
 
 Requests and replies:
@@ -18,9 +21,10 @@ Requests and replies:
 
 Nothing here is trusted by the grader: it compares the values itself, in its own process.
 
-The worker does not import kinlib (its wire format is loaded from ``_wire.py`` by path), and
-the modules named in ``BLOCKED`` (comma-separated: kinlib and the peer libraries) cannot be
-imported by the submission, so an answer cannot simply be the reference's.
+The worker does not import kinlib (its wire format is loaded from ``_wire.py`` by path). In
+the sandbox (:mod:`kinlib.grade._bwrap`) kinlib and the peer libraries are not there at
+all; the ``blocked`` modules are refused by an import hook as well (in the unsandboxed mode
+that hook is all there is, and a determined submission can remove it).
 """
 
 from __future__ import annotations
@@ -28,14 +32,32 @@ from __future__ import annotations
 import importlib.util
 import os
 import re
+import resource
 import sys
 import traceback
 
-_spec = importlib.util.spec_from_file_location(
-    "_kinlib_wire", os.path.join(os.path.dirname(os.path.abspath(__file__)), "_wire.py"))
-_wire = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(_wire)
-decode, dumps, encode, loads = _wire.decode, _wire.dumps, _wire.encode, _wire.loads
+decode = dumps = encode = loads = None  # from _wire.py, loaded by _load_wire()
+
+
+def _load_wire() -> None:
+    global decode, dumps, encode, loads
+    spec = importlib.util.spec_from_file_location(
+        "_kinlib_wire", os.path.join(os.path.dirname(os.path.abspath(__file__)), "_wire.py"))
+    wire = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(wire)
+    decode, dumps, encode, loads = wire.decode, wire.dumps, wire.encode, wire.loads
+
+
+def _become(uid: int | None, nproc: int | None) -> None:
+    """Drop root (the sandbox run by root) and cap the processes, before anything else."""
+    if uid is not None:
+        os.setgroups([])
+        os.setresgid(uid, uid, uid)
+        os.setresuid(uid, uid, uid)
+        if 0 in os.getresuid() or 0 in os.getresgid():
+            os._exit(70)
+    if nproc:
+        resource.setrlimit(resource.RLIMIT_NPROC, (nproc, nproc))
 
 _MAGIC = re.compile(r"^(\s*)[%!].*$", re.M)
 
@@ -83,8 +105,12 @@ class _Blocker:
         return None
 
 
-def main(fd_in: int, fd_out: int, blocked: str = "") -> None:
-    names = [n for n in blocked.split(",") if n]
+def main(config: dict) -> None:
+    _become(config.get("uid"), config.get("nproc"))
+    sys.path[:0] = list(config.get("path", ()))
+    _load_wire()
+    fd_in, fd_out = config["fds"]
+    names = list(config.get("blocked", ()))
     for n in list(sys.modules):
         if n.split(".")[0] in names:
             del sys.modules[n]
@@ -92,13 +118,10 @@ def main(fd_in: int, fd_out: int, blocked: str = "") -> None:
     requests = os.fdopen(fd_in, "rb", buffering=0)
     replies = os.fdopen(fd_out, "wb", buffering=0)
 
-    # the student's printing goes to output.txt in the (temporary) working directory
-    log = os.open("output.txt", os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
-    os.dup2(log, 1)
-    os.dup2(log, 2)
-    os.close(log)
-    null = os.open(os.devnull, os.O_RDONLY)
-    os.dup2(null, 0)
+    # the student's printing is not kept (it cannot fill a disk or pass for a reply)
+    null = os.open(os.devnull, os.O_RDWR)
+    for fd in (0, 1, 2):
+        os.dup2(null, fd)
     os.close(null)
     sys.stdout = open(1, "w", buffering=1, closefd=False)
     sys.stderr = open(2, "w", buffering=1, closefd=False)
@@ -160,4 +183,6 @@ def _call(namespace: dict, name: str, cases: list, call_id, replies) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]), int(sys.argv[2]), sys.argv[3] if len(sys.argv) > 3 else "")
+    import json
+
+    main(json.loads(sys.argv[1]))

@@ -124,6 +124,11 @@ SUBOPTIMAL = ("stop when the goal is popped from the heap, not when it is pushed
               "its g and parent and push it again")
 
 
+def _no_path(args) -> bool:
+    """Whether the case has no path (its right answer, None, needs no search)."""
+    return not _plan(*args).success
+
+
 def _judge_astar(args, got):
     free, start, goal, l1, l2, metric = args
     plan = _plan(free, start, goal, l1, l2, metric)
@@ -304,5 +309,6 @@ def assignment() -> Assignment:
               Check("edge_cost", 8, "the cost of one move, joint and end-effector metric",
                     _edge_cases, edge_cost_reference, _edge_mistakes()),
               Check("astar_2r", 20, "an optimal path by A*, or None", _astar_cases,
-                    judge=_judge_astar)]
+                    judge=_judge_astar, is_trivial=_no_path,
+                    trivial="of None where there is no path")]
     return Assignment("04_planning", "Configuration-space planning", checks)
