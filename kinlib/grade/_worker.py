@@ -106,9 +106,9 @@ class _Blocker:
 
 
 def main(config: dict) -> None:
-    _become(config.get("uid"), config.get("nproc"))
     sys.path[:0] = list(config.get("path", ()))
-    _load_wire()
+    _load_wire()  # (before dropping root: the worker's files may be root's alone)
+    _become(config.get("uid"), config.get("nproc"))
     fd_in, fd_out = config["fds"]
     names = list(config.get("blocked", ()))
     for n in list(sys.modules):
