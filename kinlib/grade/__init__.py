@@ -10,16 +10,20 @@ Python::
     result = grade("alice/01_rotations.ipynb")
     print(format_report(result))
 
-Each submission runs in its own process (a separate Python with memory, CPU-time and
-file-size limits and a time limit on every cell and every case; see
-:mod:`kinlib.grade._sandbox`). Its functions are found by name and called on fixed and
-seeded random cases; the answers come back as plain JSON data and are judged here, against
-kinlib, with diagnoses of the classic mistakes (:mod:`kinlib.grade._checks`).
+Each submission runs in its own process inside a bubblewrap sandbox (no kinlib, no network,
+no other files, its own PID namespace, never root: :mod:`kinlib.grade._bwrap`), with memory,
+CPU-time, file-size and process limits and deadlines per cell, case, function and
+submission (:mod:`kinlib.grade._sandbox`). Without a sandbox the grader refuses unless
+``unsandboxed=True`` (``--unsandboxed``), which marks the result. Its functions are found by
+name and called on fixed and seeded random cases (public, ``seed``, or hidden, from the
+instructor's ``secret``); the answers come back as plain JSON data and are judged here,
+against kinlib, with diagnoses of the classic mistakes (:mod:`kinlib.grade._checks`).
+:mod:`kinlib.grade.gradescope` exports an assignment as a Gradescope autograder.
 
 A result is a JSON-ready dict::
 
     {"submission": path, "assignment": "01_rotations", "graded": true, "error": null,
-     "score": 35.5, "max_score": 38.0,
+     "score": 35.5, "max_score": 38.0, "cases": "secret", "sandbox": "bubblewrap 0.11.0",
      "checks": [{"function": "rotx", "points": 2, "score": 2.0, "passed": 30, "total": 30,
                  "diagnoses": [{"key": "transposed", "count": 12, "message": "..."}],
                  "examples": [{"input": "...", "expected": "...", "got": "...",
@@ -27,11 +31,22 @@ A result is a JSON-ready dict::
      "cells": [{"cell": 7, "ok": false, "error": "NotImplementedError", "where": "..."}]}
 
 ``graded`` is False (and ``error`` says why) only when the file could not be graded at all:
-not a notebook, or not one of the assignments.
+not a notebook, or not one of the assignments. An unsandboxed result has ``"sandbox": null``
+and a ``"warning"``.
 """
 
 from __future__ import annotations
 
-from ._grader import assignment_names, format_report, grade, grade_many, load_assignment
+from ._bwrap import SandboxUnavailable
+from ._grader import (
+    assignment_names,
+    cases_seed,
+    format_report,
+    grade,
+    grade_many,
+    load_assignment,
+    summary,
+)
 
-__all__ = ["grade", "grade_many", "format_report", "load_assignment", "assignment_names"]
+__all__ = ["grade", "grade_many", "format_report", "load_assignment", "assignment_names",
+           "summary", "cases_seed", "SandboxUnavailable"]
