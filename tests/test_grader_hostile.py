@@ -223,7 +223,7 @@ for path in (P["canary"],):
         os.remove(path)
     except OSError:
         pass
-for path in ("/tmp/big.bin", "big.bin", P["root"] + "/big.bin"):
+for path in ("big.bin", P["root"] + "/big.bin"):  # (/tmp: see test_grader_sandbox)
     try:
         with open(path, "wb") as fh:
             for _ in range(100):  # more than the sandbox's 64 MiB
@@ -241,13 +241,10 @@ for path in [P["grader"] + "/kinlib/grade/_grader.py"] + find({"_grader.py"}, [s
         open(os.path.join(pyc, "_checks.cpython-311.pyc"), "wb").write(b"planted")
     except OSError:
         pass'''],
-    "site_pth": [ROT, '''import os, sys, site
-targets = [P["site"]] + list(sys.path) + [site.getusersitepackages()]
-try:
-    targets += site.getsitepackages()
-except AttributeError:
-    pass
-for d in targets:
+    "site_pth": [ROT, '''import os, sys
+# the canary "site-packages", and the libraries' directory the sandbox shows (the runtime's
+# own directories are checked read-only in test_grader_sandbox, without writing to them)
+for d in [P["site"]] + [d for d in sys.path if d.startswith("/sandbox")]:
     try:
         open(os.path.join(d, "zz_kinlib_pwn.pth"), "w").write("import os\\n")
     except OSError:

@@ -72,7 +72,7 @@ def test_timeout_and_death_are_reported_and_kill_everything(sandbox, sandboxed):
                                                 "while True: time.sleep(1)"]]})
         assert w.receive(10)["phase"] == "start"
         pids = []
-        for _ in range(100):  # the grandchild, seen from outside
+        for _ in range(400):  # the grandchild, seen from outside
             pids = host_pids(marker)
             if pids:
                 break
@@ -154,14 +154,9 @@ try:
     facts["dns"] = "resolved"
 except OSError:
     facts["dns"] = "failed"
-written = {}
-for d in ("/usr/lib", sys.prefix, "/sandbox/lib/numpy", "/etc"):
-    try:
-        open(os.path.join(d, "x"), "w").close()
-        written[d] = True
-    except OSError:
-        written[d] = False
-facts["written"] = written
+# (asked, not tried: a broken sandbox must not leave files in the machine's runtime)
+facts["written"] = {d: os.access(d, os.W_OK) for d in ("/usr/lib", "/usr/bin", sys.prefix,
+                                                       sys.prefix + "/lib", "/sandbox/lib/numpy")}
 def fill(path):
     n = 0
     try:
