@@ -17,7 +17,9 @@ STAMP  := $(VENV)/.kinlib-installed
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[lab,dev,fast,grade]'
+	# (--no-compile: Python compiles each module the first time it is imported, not the
+	# whole of every dependency up front; on a fresh machine that saves about 20 s)
+	$(BIN)/python -m pip install --quiet --no-compile -e '.[lab,dev,fast,grade]'
 	touch $(STAMP)
 
 venv: $(STAMP)

@@ -17,6 +17,7 @@ never worked.
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import json
 import os
@@ -441,7 +442,13 @@ def runs(tmp_path_factory):
         control_results = control.finish()
         listening = not port_free(control.port)  # (its daemon has outlived the grader)
         control.cleanup()
-        yield (sandboxed, sandboxed.finish()), (control, control_results, listening)
+        results = sandboxed.finish()
+        sandboxed.after = digest(sandboxed.grader), digest(sandboxed.root / "assignments")
+        # the next run, with the public cases (a student's own run): normal
+        again = copy.copy(sandboxed)
+        again.out = sandboxed.root / "out_public"
+        sandboxed.public = again.grade(["table", "classmate.ipynb"], secret=False)
+        yield (sandboxed, results), (control, control_results, listening)
     finally:
         sandboxed.cleanup()
         control.cleanup()
@@ -488,7 +495,7 @@ def test_a_table_of_the_public_cases_fails_the_hidden_ones(sandboxed):
     hidden = by_function(results["table"])["rotx"]
     assert hidden["passed"] == 7 and hidden["total"] == 30  # only the 7 fixed angles
     assert results["table"]["cases"] == "secret"
-    public = run.grade(["table"], secret=False)["table"]  # the student's own run: all right
+    public = run.public["table"]  # the student's own run: all right
     assert public["cases"] == "public (seed 0)"
     assert by_function(public)["rotx"]["passed"] == 30
 
@@ -536,11 +543,10 @@ def test_the_machine_is_untouched_and_the_next_run_is_normal(sandboxed):
     assert run.canary.read_text() == "canary\n"
     assert not (run.root / "big.bin").exists()
     assert list(run.site.iterdir()) == []
-    assert digest(run.grader) == run.before
-    before = set(digest(run.root / "assignments"))
-    again = run.grade(["classmate.ipynb"], secret=False)
-    assert again["classmate.ipynb"]["score"] == FULL
-    assert set(digest(run.root / "assignments")) == before
+    grader, assignments = run.after
+    assert grader == run.before
+    assert assignments == {f"source/{k}": v for k, v in digest(ROOT / "source").items()}
+    assert run.public["classmate.ipynb"]["score"] == FULL
 
 
 def test_secrets_do_not_leak(sandboxed):

@@ -101,12 +101,26 @@ def test_the_zip_has_what_gradescope_needs(autograder):
         assert len(z.read("secret")) >= 32
 
 
-@pytest.mark.parametrize("edition", ["source", "release"])
-def test_run_autograder_grades_the_submission(autograder, edition, tmp_path):
-    _, zip_path = autograder
-    root = tmp_path / "autograder"
+@pytest.fixture(scope="module")
+def unpacked(autograder):
+    """One /autograder root for the runs below (each clears the submission and results)."""
+    base, zip_path = autograder
+    root = base / "autograder"
     unpack(zip_path, root)
-    shutil.copy(ROOT / edition / f"{NAME}.ipynb", root / "submission" / "homework.ipynb")
+    return root
+
+
+def hand_in(root: Path, notebook: Path, name: str = "homework.ipynb") -> None:
+    for d in ("submission", "results"):
+        shutil.rmtree(root / d)
+        (root / d).mkdir()
+    shutil.copy(notebook, root / "submission" / name)
+
+
+@pytest.mark.parametrize("edition", ["source", "release"])
+def test_run_autograder_grades_the_submission(unpacked, edition):
+    root = unpacked
+    hand_in(root, ROOT / edition / f"{NAME}.ipynb")
     out = run_autograder(root)
     assert out.returncode == 0, out.stderr[-2000:]
     data = json.loads((root / "results" / "results.json").read_text())
@@ -126,31 +140,32 @@ def test_run_autograder_grades_the_submission(autograder, edition, tmp_path):
     assert "total:" in out.stdout  # the instructor's view in Gradescope's stdout
 
 
-def test_no_sandbox_in_the_container_refuses_unless_allowed(autograder, tmp_path):
-    base, zip_path = autograder
-    root = tmp_path / "refuse"
-    unpack(zip_path, root)
-    shutil.copy(ROOT / "source" / f"{NAME}.ipynb", root / "submission")
+def test_no_sandbox_in_the_container_refuses_unless_allowed(autograder, unpacked):
+    base, _ = autograder
+    root = unpacked
+    hand_in(root, ROOT / "source" / f"{NAME}.ipynb", f"{NAME}.ipynb")
     out = run_autograder(root, KINLIB_BWRAP="/nonexistent/bwrap")
     assert out.returncode == 2 and "--allow-unsandboxed" in out.stderr
     assert not (root / "results" / "results.json").exists()
     allowed = export(NAME, base / "allowed.zip", allow_unsandboxed=True)
-    root = tmp_path / "allowed"
-    unpack(allowed, root)
-    shutil.copy(ROOT / "source" / f"{NAME}.ipynb", root / "submission")
-    out = run_autograder(root, KINLIB_BWRAP="/nonexistent/bwrap")
-    assert out.returncode == 0, out.stderr
-    data = json.loads((root / "results" / "results.json").read_text())
+    with zipfile.ZipFile(allowed) as z:  # the same root, this zip's configuration
+        (root / "source" / "config.json").write_bytes(z.read("config.json"))
+    try:
+        out = run_autograder(root, KINLIB_BWRAP="/nonexistent/bwrap")
+        assert out.returncode == 0, out.stderr
+        data = json.loads((root / "results" / "results.json").read_text())
+    finally:
+        with zipfile.ZipFile(autograder[1]) as z:
+            (root / "source" / "config.json").write_bytes(z.read("config.json"))
     check_results(data)
     assert data["output"].startswith("WARNING: graded WITHOUT the sandbox")
     assert data["extra_data"]["kinlib"]["sandbox"] is None
 
 
-def test_a_submission_without_a_notebook_gets_a_result_saying_so(autograder, tmp_path):
-    _, zip_path = autograder
-    root = tmp_path / "empty"
-    unpack(zip_path, root)
-    (root / "submission" / "answers.py").write_text("print('hi')\n")
+def test_a_submission_without_a_notebook_gets_a_result_saying_so(unpacked, tmp_path):
+    root = unpacked
+    (tmp_path / "answers.py").write_text("print('hi')\n")
+    hand_in(root, tmp_path / "answers.py", "answers.py")
     out = run_autograder(root)
     assert out.returncode == 0, out.stderr
     data = json.loads((root / "results" / "results.json").read_text())
