@@ -17,9 +17,7 @@ STAMP  := $(VENV)/.kinlib-installed
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	# (--no-compile: Python compiles each module the first time it is imported, not the
-	# whole of every dependency up front; on a fresh machine that saves about 20 s)
-	$(BIN)/python -m pip install --quiet --no-compile -e '.[lab,dev,fast,grade]'
+	$(BIN)/python -m pip install --quiet -e '.[lab,dev,fast,grade]'
 	touch $(STAMP)
 
 venv: $(STAMP)
@@ -40,11 +38,11 @@ lint: $(STAMP)
 	$(BIN)/ruff check .
 
 # Two workers (pytest-xdist); a file's tests stay together in one worker (a notebook's cells
-# share its kernel, the JupyterLab suite its server).
+# share its kernel, the JupyterLab suite its server); the longest files first (conftest.py).
 WORKERS ?= 2
 
 test: lint
-	$(BIN)/python -m pytest -n $(WORKERS) --dist loadfile
+	$(BIN)/python -m pytest -n $(WORKERS) --dist loadfile --no-loadscope-reorder
 
 site: $(STAMP)
 	$(BIN)/python -m kinlib.site --out site --jobs 2
