@@ -152,3 +152,21 @@ def test_a_cell_without_source_and_a_failing_submission_lose_nothing(tmp_path, m
     assert results[0]["graded"] and results[0]["score"] == results[0]["max_score"]
     assert not results[1]["graded"] and "a grader bug" in results[1]["error"]
     assert results[2]["graded"] and results[2]["score"] == results[2]["max_score"]
+
+
+def test_the_submission_deadline_stops_a_cell_within_its_own_limit(tmp_path):
+    """A cell may run 60 s; the submission 3 s: the cell is stopped at 3 s, said so, and
+    every function is reported as not run for lack of time."""
+    from grading_helpers import write_notebook
+
+    from kinlib.grade import grade
+
+    sub = write_notebook(tmp_path / "slow.ipynb", "import time\ntime.sleep(30)",
+                         "def rotx(t):\n    return 0", assignment="01_rotations")
+    result = grade(sub, cell_timeout=60.0, submission_timeout=3.0)
+    (cell,) = result["cells"]
+    assert "used all of its time (3 s)" in cell["error"], cell
+    assert result["score"] == 0
+    for check in result["checks"]:
+        assert [d["key"] for d in check["diagnoses"]] == ["not run"], check["diagnoses"]
+        assert "all of its time (3 s" in check["diagnoses"][0]["message"]

@@ -105,9 +105,10 @@ class _Session:
     """The student's process for one submission, restarted when it hangs or dies."""
 
     def __init__(self, cells, cell_timeout: float, memory_mb: int, sandbox: Sandbox | None,
-                 deadline: float):
+                 budget: float):
         self.cells, self.cell_timeout, self.memory_mb = cells, cell_timeout, memory_mb
-        self.sandbox, self.deadline = sandbox, deadline
+        self.sandbox, self.budget = sandbox, budget
+        self.deadline = time.monotonic() + budget  # for all cells and cases together
         self.skip: set[int] = set()
         self.reports: dict[int, dict] = {}
         self.worker: Worker | None = None
@@ -164,8 +165,13 @@ class _Session:
                 elif ev == "cells_done" and current is None and nxt == len(order):
                     return  # (a forged "done" before the last cell ended is ignored)
         except (WorkerTimeout, WorkerDied) as exc:
-            what = (f"ran longer than {self.cell_timeout:g} s and was stopped"
-                    if isinstance(exc, WorkerTimeout) else f"ended the process: {exc}")
+            if isinstance(exc, WorkerDied):
+                what = f"ended the process: {exc}"
+            elif time.monotonic() >= self.deadline:
+                what = (f"was running when the submission used all of its time "
+                        f"({self.budget:g} s) and was stopped")
+            else:
+                what = f"ran longer than {self.cell_timeout:g} s and was stopped"
             # the cell running, or the last one started (its end may have been forged by
             # its own code, to escape the blame)
             culprit = current if current is not None else last
@@ -340,9 +346,7 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
     cells = [[i, c.get("source")] for i, c in enumerate(nb.cells)
              if isinstance(c, dict) and c.get("cell_type") == "code"
              and isinstance(c.get("source"), str)]  # a cell without source is left out
-    session = _Session(cells, cell_timeout, memory_mb, sandbox,
-                       time.monotonic() + submission_timeout)
-    session.budget = submission_timeout
+    session = _Session(cells, cell_timeout, memory_mb, sandbox, submission_timeout)
     try:
         for check in spec.checks:
             cases = check.make_cases(seed)
