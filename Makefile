@@ -39,7 +39,7 @@ lint: $(STAMP)
 
 # Two workers (pytest-xdist); a file's tests stay together in one worker (a notebook's cells
 # share its kernel, the JupyterLab suite its server); the longest files first (conftest.py).
-WORKERS ?= 3
+WORKERS ?= 2
 
 test: lint
 	$(BIN)/python -m pytest -n $(WORKERS) --dist loadfile --no-loadscope-reorder
