@@ -7,6 +7,8 @@
   terminal escapes; the control shows the same fields joined raw would do all three.
 """
 
+import json
+
 import pytest
 
 from kinlib.grade._grader import format_report
@@ -170,3 +172,32 @@ def test_the_submission_deadline_stops_a_cell_within_its_own_limit(tmp_path):
     for check in result["checks"]:
         assert [d["key"] for d in check["diagnoses"]] == ["not run"], check["diagnoses"]
         assert "all of its time (3 s" in check["diagnoses"][0]["message"]
+
+
+def test_notebook_files_are_read_as_plain_json(tmp_path):
+    """Sources as lists of lines (the file format) or strings, an old format-3 notebook,
+    and files that are not notebooks: a clear error each, never a crash."""
+    import nbformat
+    from grading_helpers import ROOT
+
+    from kinlib.grade import grade
+
+    source = ROOT / "source" / "01_rotations.ipynb"
+    nb4 = nbformat.read(source, as_version=4)
+    v3 = nbformat.convert(nb4, 3)
+    old = tmp_path / "01_rotations_v3.ipynb"
+    old.write_text(nbformat.writes(v3, version=3))
+    assert json.loads(old.read_text())["nbformat"] == 3
+    result = grade(old)
+    assert result["graded"] and result["score"] == result["max_score"], result["error"]
+    odd = json.loads(source.read_text())
+    odd["cells"].insert(0, "not a cell")  # kept as a place: the cell numbers stay the file's
+    odd["cells"][5]["source"] = "".join(odd["cells"][5]["source"])  # one as a string
+    (tmp_path / "01_odd.ipynb").write_text(json.dumps(odd))
+    assert grade(tmp_path / "01_odd.ipynb")["score"] == result["max_score"]
+    for name, text in (("deep", "[" * 100_000 + "]" * 100_000), ("list", "[1, 2]"),
+                       ("bytes", b"\xff\xfe{".decode("latin-1")), ("cells", '{"cells": 3}')):
+        path = tmp_path / f"01_{name}.ipynb"
+        path.write_text(text, encoding="latin-1")
+        bad = grade(path)
+        assert not bad["graded"] and "expected a Jupyter notebook" in bad["error"], bad

@@ -73,23 +73,57 @@ def load_assignment(name: str) -> Assignment:
     return ASSIGNMENTS[name]()
 
 
-def _read(path: Path):
-    import nbformat
+#: the largest notebook file read (a hand-in with big images stays well below it)
+MAX_NOTEBOOK_BYTES = 100 * 1024 * 1024
 
+
+def _read(path: Path) -> dict:
+    """The notebook at ``path`` as plain JSON: ``{"metadata": dict, "cells": [{"cell_type",
+    "source": str}, ...]}`` (sources joined). Read with :mod:`json`, not nbformat, whose
+    schema validation costs about 2 s per grader process to import and is not needed to
+    find the code cells; notebooks older than format 4 go through nbformat's converter."""
     try:
-        nb = nbformat.read(path, as_version=4)
+        size = path.stat().st_size
+        if size > MAX_NOTEBOOK_BYTES:
+            raise KinlibError(f"{path}: expected a notebook of at most "
+                              f"{MAX_NOTEBOOK_BYTES >> 20} MiB, the file has {size >> 20} MiB")
+        data = json.loads(path.read_bytes())
     except FileNotFoundError:
         raise KinlibError(f"{path}: no such file") from None
-    except Exception as exc:  # nbformat raises many kinds
+    except KinlibError:
+        raise
+    except Exception as exc:  # not UTF-8, not JSON, too deep, a directory...
         raise KinlibError(f"{path}: expected a Jupyter notebook (.ipynb), could not read it: "
                           f"{type(exc).__name__}: {str(exc)[:200]}") from None
-    return nb
+    if isinstance(data, dict) and isinstance(data.get("nbformat"), int) \
+            and data["nbformat"] < 4 and "worksheets" in data:
+        import nbformat  # an old notebook: nbformat's converter
+
+        try:
+            data = json.loads(nbformat.writes(nbformat.reads(json.dumps(data), as_version=4)))
+        except Exception as exc:
+            raise KinlibError(f"{path}: an old notebook (format {data['nbformat']}) that could "
+                              f"not be converted: {str(exc)[:200]}") from None
+    if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
+        raise KinlibError(f"{path}: expected a Jupyter notebook (a JSON object with a list of "
+                          "cells), got something else")
+    cells = []
+    for c in data["cells"]:
+        if not isinstance(c, dict):  # (kept as a place, so that cell numbers stay the file's)
+            c = {}
+        source = c.get("source")
+        if isinstance(source, list) and all(isinstance(x, str) for x in source):
+            source = "".join(source)
+        cells.append({"cell_type": c.get("cell_type"),
+                      "source": source if isinstance(source, str) else None})
+    meta = data.get("metadata")
+    return {"metadata": meta if isinstance(meta, dict) else {}, "cells": cells}
 
 
 def _which(nb, path: Path, assignment: str | None) -> str:
     if assignment is not None:
         return assignment
-    meta = nb.metadata.get("kinlib", {}) if isinstance(nb.metadata, dict) else {}
+    meta = nb["metadata"].get("kinlib", {})
     name = meta.get("assignment") if isinstance(meta, dict) else None
     names = assignment_names()
     if isinstance(name, str) and name in names:
@@ -343,9 +377,8 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
         return result
     result.update(assignment=name, title=spec.title, max_score=spec.max_score,
                   cases="secret" if secret is not None else f"public (seed {seed})")
-    cells = [[i, c.get("source")] for i, c in enumerate(nb.cells)
-             if isinstance(c, dict) and c.get("cell_type") == "code"
-             and isinstance(c.get("source"), str)]  # a cell without source is left out
+    cells = [[i, c["source"]] for i, c in enumerate(nb["cells"])
+             if c["cell_type"] == "code" and c["source"] is not None]  # (no source: left out)
     session = _Session(cells, cell_timeout, memory_mb, sandbox, submission_timeout)
     try:
         for check in spec.checks:
