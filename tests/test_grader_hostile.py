@@ -31,6 +31,7 @@ from pathlib import Path
 
 import pytest
 from grading_helpers import ROOT, by_function, solution_code, write_notebook
+from processes import host_pids
 
 import kinlib
 from kinlib.grade import format_report, load_assignment
@@ -289,18 +290,6 @@ def rotx(t):
 # the attacks graded again without the sandbox, where they must work (the harmless ones)
 CONTROLS = ("meta_path", "kinlib_by_path", "instructor_source", "reads_classmate", "stdout_forge",
             "files", "patch_grader", "snoop", "listener")
-
-
-def host_pids(marker: str) -> list[int]:
-    found = []
-    for pid in os.listdir("/proc"):
-        try:
-            with open(f"/proc/{pid}/cmdline", "rb") as fh:
-                if marker.encode() in fh.read():
-                    found.append(int(pid))
-        except (OSError, ValueError):
-            pass
-    return found
 
 
 def kill_marked(marker: str) -> None:

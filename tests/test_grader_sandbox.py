@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from processes import wait_gone
+from processes import host_pids, wait_gone
 
 from kinlib.grade._bwrap import find_sandbox
 from kinlib.grade._sandbox import BLOCKED, Worker, WorkerDied, WorkerTimeout
@@ -17,19 +17,6 @@ from kinlib.grade._wire import Odd, WireError, decode, dumps, encode, loads
 @pytest.fixture(scope="module")
 def sandbox():
     return find_sandbox(BLOCKED)
-
-
-def host_pids(marker: str) -> list[int]:
-    """Processes on this machine (outside any sandbox) whose command line holds ``marker``."""
-    found = []
-    for pid in os.listdir("/proc"):
-        try:
-            with open(f"/proc/{pid}/cmdline", "rb") as fh:
-                if marker.encode() in fh.read():
-                    found.append(int(pid))
-        except (OSError, ValueError):
-            pass
-    return found
 
 
 def run_cells(worker, *sources, timeout=30.0):

@@ -457,6 +457,18 @@ def _printable(line: str) -> str:
                    if unicodedata.category(ch) in ("Cc", "Cf") else ch for ch in line)
 
 
+def check_lines(check: dict) -> list[str]:
+    """What went wrong in one function's check: its diagnoses, then one example."""
+    lines = [f"{d['count']} case(s): {d['message']}" for d in check["diagnoses"]]
+    for e in check["examples"][:1]:
+        lines.append(f"e.g. input {e['input']}")
+        if e["got"] is not None:
+            lines.append(f"     you returned {e['got']}")
+        if e["expected"] is not None:
+            lines.append(f"     expected     {e['expected']}")
+    return lines
+
+
 def format_report(result: dict) -> str:
     """A per-function text report of one :func:`grade` result, for the student; every line
     passes through :func:`_printable`."""
@@ -470,14 +482,7 @@ def format_report(result: dict) -> str:
         mark = "ok " if c["passed"] == c["total"] else "   "
         lines.append(f"  {mark}{c['function']:<28} {c['score']:>6g} / {c['points']:<4g} "
                      f"{c['passed']}/{c['total']} cases right")
-        for d in c["diagnoses"]:
-            lines.append(f"       {d['count']} case(s): {d['message']}")
-        for e in c["examples"][:1]:
-            lines.append(f"       e.g. input {e['input']}")
-            if e["got"] is not None:
-                lines.append(f"            you returned {e['got']}")
-            if e["expected"] is not None:
-                lines.append(f"            expected     {e['expected']}")
+        lines += ["       " + line for line in check_lines(c)]
     for cell in result["cells"]:
         where = f" ({cell['where']})" if cell["where"] else ""
         lines.append(f"  note: running cell {cell['cell']} gave {cell['error']}{where}")

@@ -48,6 +48,7 @@ from ._grader import (
     SUBMISSION_TIMEOUT,
     _printable,
     assignment_names,
+    check_lines,
     format_report,
     grade,
     load_assignment,
@@ -157,14 +158,7 @@ def results_json(result: dict, visibility: str = "visible", seconds: float | Non
     """Gradescope's results.json for one :func:`~kinlib.grade.grade` result."""
     tests = []
     for k, c in enumerate(result.get("checks", []), 1):
-        lines = [f"{c['passed']}/{c['total']} cases right"]
-        lines += [f"{d['count']} case(s): {d['message']}" for d in c["diagnoses"]]
-        for e in c["examples"][:1]:
-            lines.append(f"e.g. input {e['input']}")
-            if e["got"] is not None:
-                lines.append(f"     you returned {e['got']}")
-            if e["expected"] is not None:
-                lines.append(f"     expected     {e['expected']}")
+        lines = [f"{c['passed']}/{c['total']} cases right", *check_lines(c)]
         tests.append({"name": _printable(f"{c['function']}: {c['title']}"), "number": str(k),
                       "score": float(c["score"]), "max_score": float(c["points"]),
                       "status": "passed" if c["passed"] == c["total"] else "failed",
