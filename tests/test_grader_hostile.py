@@ -31,6 +31,7 @@ from pathlib import Path
 
 import pytest
 from grading_helpers import ROOT, by_function, solution_code, write_notebook
+from lab_harness import free_port
 from processes import host_pids
 
 import kinlib
@@ -305,12 +306,6 @@ def digest(tree: Path) -> dict:
             for p in sorted(tree.rglob("*")) if p.is_file()}
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 def port_free(port: int) -> bool:
     with socket.socket() as s:
         try:
@@ -331,7 +326,7 @@ def table_cell() -> str:
 class Run:
     """One grading run of the corpus, with its own kinlib copy, HOME, canaries and paths."""
 
-    def __init__(self, base: Path, name: str, kinds, *, unsandboxed=False, extra=()):
+    def __init__(self, base: Path, name: str, kinds, *, unsandboxed=False):
         self.root = base / name
         self.root.mkdir()
         self.grader = self.root / "grader"
@@ -378,8 +373,6 @@ class Run:
         classmate = self.subs / "classmate.ipynb"
         write_notebook(classmate, solution_code("01_rotations"), assignment="01_rotations")
         self.paths["classmate.ipynb"] = classmate
-        for label, path in extra:
-            self.paths[label] = path
         self.unsandboxed = unsandboxed
 
     def start(self, kinds=None, *, secret=True, timeout=10) -> None:

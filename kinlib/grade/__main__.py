@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 from ..errors import KinlibError
+from ._bwrap import SandboxUnavailable
 from ._grader import (
     SUBMISSION_TIMEOUT,
     assignment_names,
@@ -118,7 +119,7 @@ def main(argv=None) -> int:
                              submission_timeout=args.submission_timeout,
                              memory_mb=args.memory_mb, unsandboxed=args.unsandboxed,
                              on_result=done)
-    except KinlibError as exc:  # no sandbox here (SandboxUnavailable): nothing was run
+    except SandboxUnavailable as exc:  # no sandbox here: nothing was run
         print(f"not grading: {exc}", file=sys.stderr)
         return 2
     print(summary(results), file=sys.stderr if args.json else sys.stdout, flush=True)

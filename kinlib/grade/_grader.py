@@ -345,6 +345,13 @@ def _summarise(check: Check, cases, results, verdicts) -> dict:
             "examples": examples}
 
 
+def not_graded(submission, assignment: str | None, error: str | None,
+               max_score: float = 0.0) -> dict:
+    """A result with nothing graded (yet): ``error`` says why."""
+    return {"submission": str(submission), "assignment": assignment, "graded": False,
+            "error": error, "score": 0.0, "max_score": max_score, "checks": [], "cells": []}
+
+
 def grade(submission, assignment: str | None = None, *, seed: int = 0,
           secret: str | bytes | None = None, cell_timeout: float = 60.0,
           memory_mb: int = 4096, submission_timeout: float = SUBMISSION_TIMEOUT,
@@ -362,9 +369,8 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
     """
     sandbox = None if unsandboxed else find_sandbox(BLOCKED)
     path = Path(submission)
-    result = {"submission": str(path), "assignment": assignment, "graded": False,
-              "error": None, "score": 0.0, "max_score": 0.0, "checks": [], "cells": [],
-              "sandbox": None if sandbox is None else sandbox.describe()}
+    result = not_graded(path, assignment, None)
+    result["sandbox"] = None if sandbox is None else sandbox.describe()
     if sandbox is None:
         result["warning"] = UNSANDBOXED
     try:
@@ -413,10 +419,8 @@ def grade_many(submissions, assignment: str | None = None, *, jobs: int | None =
         try:
             return grade(path, assignment, **kwargs)
         except Exception as exc:
-            return {"submission": str(path), "assignment": assignment, "graded": False,
-                    "error": f"the grader failed on this submission: {type(exc).__name__}: "
-                             f"{str(exc)[:300]}", "score": 0.0, "max_score": 0.0,
-                    "checks": [], "cells": []}
+            return not_graded(path, assignment, "the grader failed on this submission: "
+                                                f"{type(exc).__name__}: {str(exc)[:300]}")
 
     out: list = [None] * len(paths)
     with ThreadPoolExecutor(max_workers=jobs) as pool:
@@ -435,9 +439,10 @@ def summary(results: list[dict]) -> str:
     if len(graded) < len(results):
         line += f" ({len(results) - len(graded)} could not be graded)"
     if graded:
-        mean = sum(r["score"] for r in graded) / len(graded)
-        line += f"; mean score {mean:.4g} / {graded[0]['max_score']:g}" if len(
-            {r["max_score"] for r in graded}) == 1 else f"; mean score {mean:.4g}"
+        line += f"; mean score {sum(r['score'] for r in graded) / len(graded):.4g}"
+        maxima = {r["max_score"] for r in graded}
+        if len(maxima) == 1:  # one assignment: out of its maximum
+            line += f" / {maxima.pop():g}"
     if any(r.get("warning") for r in results):
         line += "; WITHOUT the sandbox"
     return line

@@ -30,7 +30,7 @@ import time
 from pathlib import Path
 
 from .._process import die_with as _die_with
-from ._bwrap import LIB_DIR, NPROC, Sandbox
+from ._bwrap import LIB_DIR, NPROC, Sandbox, worker_env
 from ._wire import MAX_LINE, WireError, dumps, loads
 
 __all__ = ["Worker", "WorkerDied", "WorkerTimeout", "BLOCKED"]
@@ -38,10 +38,6 @@ __all__ = ["Worker", "WorkerDied", "WorkerTimeout", "BLOCKED"]
 #: modules a submission may not import: kinlib and the peer libraries that would do the work
 BLOCKED = ("kinlib", "scipy", "pytransform3d", "roboticstoolbox", "spatialmath",
            "modern_robotics", "transforms3d", "pinocchio", "pin")
-
-_THREAD_VARS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
-                "NUMBA_NUM_THREADS", "NUMEXPR_NUM_THREADS")
-
 
 class WorkerDied(RuntimeError):
     """The student's process ended (or sent something unreadable and was killed)."""
@@ -86,10 +82,7 @@ class Worker:
             argv = [sys.executable, "-I", str(Path(__file__).with_name("_worker.py")),
                     json.dumps(config)]
             cwd = self.dir
-            env = {"PATH": os.environ.get("PATH", "/usr/bin:/bin"), "HOME": self.dir,
-                   "LANG": "C.UTF-8", "MPLBACKEND": "Agg", "MPLCONFIGDIR": self.dir,
-                   "PYTHONHASHSEED": "0", "PYTHONDONTWRITEBYTECODE": "1",
-                   **{v: "1" for v in _THREAD_VARS}}
+            env = worker_env(self.dir, os.environ.get("PATH", "/usr/bin:/bin"))
         try:
             self.proc = subprocess.Popen(
                 argv, pass_fds=(to_child_r, from_child_w), cwd=cwd, env=env,

@@ -43,15 +43,20 @@ import time
 import zipfile
 from pathlib import Path
 
+import kinlib
+
 from ..errors import KinlibError
+from ._bwrap import SandboxUnavailable
 from ._grader import (
     SUBMISSION_TIMEOUT,
     _printable,
     assignment_names,
+    cases_seed,
     check_lines,
     format_report,
     grade,
     load_assignment,
+    not_graded,
 )
 
 __all__ = ["export", "run", "results_json", "VISIBILITIES"]
@@ -112,25 +117,25 @@ def export(assignment: str, out, *, secret: str | None = None, visibility: str =
     if visibility not in VISIBILITIES:
         raise KinlibError(f"visibility: expected one of {VISIBILITIES}, got {visibility!r}")
     secret = secrets.token_hex(32) if secret is None else secret
-    if not secret.strip():
-        raise KinlibError("secret: expected a non-empty secret")
+    cases_seed(secret, assignment)  # (refuses an empty secret)
     out = Path(out)
-    package = Path(__file__).resolve().parents[1]
+    package = Path(kinlib.__file__).resolve().parent  # the installed package, copied whole
     config = {"assignment": assignment, "visibility": visibility,
               "allow_unsandboxed": bool(allow_unsandboxed), "cell_timeout": cell_timeout,
               "submission_timeout": submission_timeout}
     out.parent.mkdir(parents=True, exist_ok=True)
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
-        for name, text in (("setup.sh", SETUP_SH), ("run_autograder", RUN_AUTOGRADER)):
+        def entry(name: str, text: str, mode: int = 0o644) -> None:
             info = zipfile.ZipInfo(name)
-            info.external_attr = 0o755 << 16
+            info.external_attr = mode << 16  # (the permission bits, as unzip restores them)
             info.compress_type = zipfile.ZIP_DEFLATED
             z.writestr(info, text)
-        z.writestr("requirements.txt", "\n".join(_requirements()) + "\n")
-        z.writestr("config.json", json.dumps(config, indent=1) + "\n")
-        info = zipfile.ZipInfo("secret")
-        info.external_attr = 0o600 << 16
-        z.writestr(info, secret)
+
+        entry("setup.sh", SETUP_SH, 0o755)
+        entry("run_autograder", RUN_AUTOGRADER, 0o755)
+        entry("requirements.txt", "\n".join(_requirements()) + "\n")
+        entry("config.json", json.dumps(config, indent=1) + "\n")
+        entry("secret", secret, 0o600)
         for path in sorted(package.rglob("*")):
             rel = path.relative_to(package.parent)
             if path.is_file() and "__pycache__" not in rel.parts and path.suffix != ".pyc":
@@ -196,14 +201,13 @@ def run(root="/autograder") -> int:
               "submission_timeout": config["submission_timeout"]}
     if sub is None:
         found = sorted(p.name for p in (root / "submission").rglob("*.ipynb"))
-        result = {"submission": "", "assignment": name, "graded": False,
-                  "error": f"no notebook for {name} in the submission (found: "
-                           f"{', '.join(found) or 'none'}); hand in your .ipynb", "score": 0.0,
-                  "max_score": load_assignment(name).max_score, "checks": [], "cells": []}
+        result = not_graded("", name, f"no notebook for {name} in the submission (found: "
+                                      f"{', '.join(found) or 'none'}); hand in your .ipynb",
+                            load_assignment(name).max_score)
     else:
         try:
             result = grade(sub, name, **kwargs)
-        except KinlibError as exc:  # no sandbox in this container
+        except SandboxUnavailable as exc:  # no sandbox in this container
             if not config.get("allow_unsandboxed"):
                 print(f"kinlib autograder: not grading: {exc}\nRe-export the autograder with "
                       "--allow-unsandboxed to grade without the sandbox here.", file=sys.stderr)
