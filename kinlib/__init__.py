@@ -31,6 +31,7 @@ from .euler import EULER_SEQUENCES, euler_from_matrix, euler_gimbal_lock, matrix
 from .ik import IKResult, dls_step, pose_error
 from .model import Joint, Link, Mimic, Visual
 from .planar import Planar2RIK, planar_2r_fk, planar_2r_ik, planar_2r_jacobian
+from .poe import body_jacobian, poe_fk, screw_axes, space_jacobian
 from .quaternions import (
     axis_angle_from_quat,
     matrix_from_quat,
@@ -56,6 +57,7 @@ from .rotations import (
     skew,
     vee,
 )
+from .se3 import adjoint, exp_se3, hat_se3, log_se3, vee_se3
 from .singularity import (
     condition_number,
     is_near_singular,
@@ -95,6 +97,15 @@ def __getattr__(name):
 
 
 __all__ = [
+    "adjoint",
+    "body_jacobian",
+    "exp_se3",
+    "hat_se3",
+    "log_se3",
+    "poe_fk",
+    "screw_axes",
+    "space_jacobian",
+    "vee_se3",
     "add_angular_velocities",
     "angular_velocity",
     "condition_number",

@@ -52,6 +52,18 @@ Dual quaternions (Daniilidis 1999)
     ``m = c × l`` for any point c on the axis, rotation angle θ about it and translation d
     along it.
 
+Twists and SE(3)
+    A twist is ``xi = [v; ω]``, linear part first, the order of the geometric Jacobian's
+    rows (Modern Robotics writes ``[ω; v]``: reorder where the two meet). ``hat_se3(xi)`` is
+    the 4×4 se(3) matrix ``[[skew(ω), v], [0, 0]]``, ``vee_se3`` its inverse;
+    ``exp_se3(xi)`` / ``log_se3(T)`` map between them and SE(3) (``|ω| <= π`` from log).
+    ``adjoint(T)`` is ``[[R, skew(p) R], [0, R]]``: ``xi_A = adjoint(T_AB) @ xi_B``. The
+    spatial twist of a moving pose is ``vee_se3(Ṫ T⁻¹)``, the body twist ``vee_se3(T⁻¹ Ṫ)``.
+    Product of exponentials: ``screw_axes(robot, link)`` gives ``(S, M)``, S (6×dof) the
+    joints' screw axes in the base frame at q = 0 (``frame="body"``: in the link's frame),
+    M the home pose, so ``robot.fk(q) == poe_fk(M, S, q)``; ``space_jacobian(S, q)`` and
+    ``body_jacobian(B, q)`` give those twists from q̇.
+
 Robots
     URDF: a joint's axis is expressed in the joint frame, which is the child link's frame:
     ``T_world_child = T_world_parent @ T_origin(xyz, rpy) @ motion(axis, q)`` (the matrix

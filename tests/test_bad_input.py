@@ -27,13 +27,14 @@ DQ_OK = np.array([1.0, 0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.5])  # pure translation b
 L_OK, M_OK = np.array([0.0, 0.0, 1.0]), np.array([0.0, -1.0, 0.0])
 
 GOOD = {(3, 3): R_OK, (4,): Q_OK, (3,): V_OK, (4, 4): T_OK, (8,): DQ_OK, (): 0.5,
-        (2,): np.array([0.1, 0.2])}
+        (2,): np.array([0.1, 0.2]), (6,): np.array([0.1, -0.2, 0.3, 0.4, 0.5, -0.6])}
 S_OK = np.array([[0.0, -3.0, 2.0], [3.0, 0.0, -1.0], [-2.0, 1.0, 0.0]])  # skew([1, 2, 3])
 
 
 SPECIAL_GOOD = {("vee", "S"): S_OK, ("dual_quat_from_screw", "l"): L_OK,
                 ("dual_quat_from_screw", "m"): M_OK,
-                ("angular_velocity", "R_dot"): S_OK @ R_OK}  # Ṙ = S(ω) R
+                ("angular_velocity", "R_dot"): S_OK @ R_OK,  # Ṙ = S(ω) R
+                ("vee_se3", "X"): kl.hat_se3([0.1, -0.2, 0.3, 0.4, 0.5, -0.6])}
 
 
 def good_for(slot):
@@ -145,6 +146,12 @@ SLOTS = [
     ("euler_rate_matrix", "angles", (3,), lambda x: kl.euler_rate_matrix(x, "ZYX")),
     ("euler_rates_singular", "angles", (3,), lambda x: kl.euler_rates_singular(x, "ZYX")),
     ("pose_error", "T", (4, 4), lambda x: kl.pose_error(x, T_OK)),
+    ("hat_se3", "xi", (6,), lambda x: kl.hat_se3(x)),
+    ("vee_se3", "X", (4, 4), lambda x: kl.vee_se3(x)),
+    ("exp_se3", "xi", (6,), lambda x: kl.exp_se3(x)),
+    ("exp_se3", "theta", (), lambda x: kl.exp_se3(GOOD[(6,)], x)),
+    ("log_se3", "T", (4, 4), lambda x: kl.log_se3(x)),
+    ("adjoint", "T", (4, 4), lambda x: kl.adjoint(x)),
     ("pose_error", "T_target", (4, 4), lambda x: kl.pose_error(T_OK, x)),
 ]
 # Public callables whose input is not an array: tested in their own modules
@@ -152,14 +159,16 @@ SLOTS = [
 # (planar_2r_cspace, astar, cost_to_go: tests/test_planning.py).
 # add_angular_velocities takes stacks (..., n, 3, 3) and the singularity tools and dls_step
 # any (..., m, n) matrix: their bad input is tested in tests/test_velocity.py,
-# tests/test_singularity.py and tests/test_ik.py.
+# tests/test_singularity.py and tests/test_ik.py; the product-of-exponentials functions take
+# a robot or (6, n) screw axes with q of length n: tests/test_poe.py.
 NOT_ARRAY_FUNCTIONS = {"load_urdf", "add_angular_velocities", "singular_values",
                        "manipulability", "condition_number", "velocity_ellipsoid",
                        "is_near_singular", "planar_2r_cspace", "astar", "cost_to_go",
-                       "dls_step"}
+                       "dls_step", "screw_axes", "poe_fk", "space_jacobian",
+                       "body_jacobian"}
 
 # None means "the default" here
-NONE_OK = {("transform", "R"), ("transform", "p")}
+NONE_OK = {("transform", "R"), ("transform", "p"), ("exp_se3", "theta")}
 # is_rotation answers False for NaN/inf (documented) instead of raising
 NONFINITE_OK = {("is_rotation", "R")}
 
@@ -170,6 +179,7 @@ BAD_SHAPES = {
     (3,): [(2,), (4,), (3, 2), (2, 2, 2), ()],
     (8,): [(7,), (4,), (8, 2), ()],
     (2,): [(3,), (1,), (2, 3), ()],
+    (6,): [(3,), (5,), (6, 2), ()],
 }
 
 
