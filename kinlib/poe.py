@@ -148,8 +148,10 @@ def space_jacobian(S, q):
     n = S.shape[1]
     J = np.empty(q.shape[:-1] + (6, n))
     T = np.broadcast_to(np.eye(4), q.shape[:-1] + (4, 4))
-    for i in range(n):
-        J[..., :, i] = np.einsum("...ij,j->...i", adjoint(T), S[:, i])
+    for i in range(n):  # Ad_T S_i = [R v + p × (R ω); R ω]
+        w = T[..., :3, :3] @ S[3:, i]
+        J[..., 3:, i] = w
+        J[..., :3, i] = T[..., :3, :3] @ S[:3, i] + np.cross(T[..., :3, 3], w)  # (..., 3)
         T = T @ E[..., i, :, :]
     return J
 
@@ -172,7 +174,10 @@ def body_jacobian(B, q):
     n = B.shape[1]
     J = np.empty(q.shape[:-1] + (6, n))
     T = np.broadcast_to(np.eye(4), q.shape[:-1] + (4, 4))  # e^{B_{i+1}q}…e^{B_n q}
-    for i in range(n - 1, -1, -1):
-        J[..., :, i] = np.einsum("...ij,j->...i", adjoint(transform_inverse(T)), B[:, i])
+    for i in range(n - 1, -1, -1):  # Ad_{T⁻¹} B_i = [Rᵀ (v − p × ω); Rᵀ ω]
+        Rt = np.swapaxes(T[..., :3, :3], -1, -2)
+        J[..., 3:, i] = Rt @ B[3:, i]
+        J[..., :3, i] = np.einsum("...ij,...j->...i", Rt,
+                                  B[:3, i] - np.cross(T[..., :3, 3], B[3:, i]))
         T = E[..., i, :, :] @ T
     return J
