@@ -22,4 +22,5 @@ ASSIGNMENTS = {
     "02_forward_kinematics": _lazy("forward_kinematics"),
     "03_jacobian_and_ik": _lazy("jacobian_ik"),
     "04_planning": _lazy("planning"),
+    "05_orientation_kinematics": _lazy("orientation"),
 }
