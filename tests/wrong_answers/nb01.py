@@ -20,15 +20,20 @@ WRONG = {
     ],
     "01.3": [(9, "symmetric"), (3, "right angles")],
     "01.4": [("a", "handedness"), ("c", "orthonormal")],
-    "01.5": [(R_AB[:, 1], "transposed")],
-    "01.6": [
+    "01.5": [
+        ([True, False, True, False], "determinant"),     # "det = 1 makes it a rotation"
+        ([True, False, False, False], "reflection"),     # rotations only
+        ([True, True, False, True], "unit columns"),     # d's columns are unit vectors
+    ],
+    "01.6": [(R_AB[:, 1], "transposed")],
+    "01.7": [
         (R_x @ [0, 1, 1], "translation"),
         (R_x.T @ [0, 1, 1] + [0, 0, 2], "transposed"),
         (R_x @ ([0, 1, 1] + np.array([0, 0, 2])), "order"),
         (np.array([[1, 0, 0], [0, np.cos(-45), -np.sin(-45)], [0, np.sin(-45), np.cos(-45)]])
          @ [0, 1, 1] + [0, 0, 2], "degrees"),
     ],
-    "01.7": [
+    "01.8": [
         (kl.rotz(np.deg2rad(30)) @ [1.0, 0.0, 0.0], "transposed"),     # the operator
         (np.array([np.cos(30), -np.sin(30), 0.0]), "degrees"),
     ],

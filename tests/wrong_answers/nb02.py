@@ -9,6 +9,10 @@ T_AB_e = kl.transform(kl.rotx(np.deg2rad(90)), [0.0, 1.0, 0.0])
 T_BC_e = kl.transform(kl.rotz(np.deg2rad(30)), [2.0, 0.0, 0.5])
 T_AB_num = kl.transform(kl.roty(np.deg2rad(60)), [2.0, 0.0, -1.0])
 R_, p_ = T_AB_num[:3, :3], T_AB_num[:3, 3]
+T_AB_grip = kl.transform(kl.matrix_from_euler(np.deg2rad([90, 30, 0]), "ZYX"), [0.5, 1.0, 0.8])
+line_B = np.array([5.0, 0.0, -20.0, -2.0, 6.0, -0.5])
+R_g, t_g = T_AB_grip[:3, :3], T_AB_grip[:3, 3]
+f_A = R_g @ line_B[:3]
 
 
 def with_column(R, p):
@@ -48,5 +52,13 @@ WRONG = {
         ([24, 60], "additions"),
         ((18, 36), "3×3"),
         ([32, 64], "final product"),
+    ],
+    "02.7": [
+        (np.r_[f_A, R_g @ line_B[3:]], "free vector"),                  # m rotated only
+        (np.r_[kl.transform_points(T_AB_grip, line_B[:3]),               # both as points
+               kl.transform_points(T_AB_grip, line_B[3:])], "point"),
+        (np.r_[f_A, R_g @ line_B[3:] + np.cross(f_A, t_g)], "cross order"),
+        (np.r_[f_A, R_g @ line_B[3:] + np.cross(t_g, line_B[:3])], "unrotated"),
+        (np.r_[R_g @ line_B[3:] + np.cross(t_g, f_A), f_A], "swapped"),  # moment first
     ],
 }

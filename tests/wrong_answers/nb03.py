@@ -58,28 +58,37 @@ def similarity_backwards():
 # R_Y(β) written out by hand with the sines the wrong way round
 Ry_by_hand = sp.Matrix([[c(b), 0, -s(b)], [0, 1, 0], [s(b), 0, c(b)]])
 
+# 03.1: (1, 0, 1) turned by 90° about x then y, and about y then x, worked out by hand
+x_then_y, y_then_x = [0, -1, -1], [1, 1, 0]
+
 WRONG = {
     "03.1": [
+        ([y_then_x, x_then_y], "order"),                    # R_X R_Y p for "x, then y"
+        ([[0, 1, 1], [-1, 1, 0]], "sense"),                 # both turns clockwise
+        ([x_then_y, x_then_y], "commute"),                  # "the order does not matter"
+        ([[1, -1, 0], [1, 0, -1]], "one turn"),             # stopped after the first turn
+    ],
+    "03.2": [
         (kl.rotx(g) * kl.roty(b) * kl.rotz(a), "extrinsic"),
         (kl.rotx(a) * kl.roty(b) * kl.rotz(g), "sequence"),
         (kl.rotz(g) * kl.roty(b) * kl.rotx(a), "swapped"),
         ((kl.rotz(a) * kl.roty(b) * kl.rotx(g)).T, "transposed"),
         (kl.rotz(a) * Ry_by_hand * kl.rotx(g), "R_Y sign"),
     ],
-    "03.2": [
+    "03.3": [
         (kl.rotx(g) * kl.roty(b) * kl.rotz(a), "extrinsic"),     # in the order performed
         (similarity_backwards(), "similarity"),
         (kl.rotz(g) * kl.roty(b) * kl.rotx(a), "swapped"),       # α about x, the first turn
         (kl.rotx(a) * kl.roty(b) * kl.rotz(g), "sequence"),      # α-β-γ about x-y-z, in turn
         (kl.rotz(a) * Ry_by_hand * kl.rotx(g), "R_Y sign"),
     ],
-    "03.3": [
+    "03.4": [
         (zyx_generic(R_try), "sequence"),                        # (α, β, γ) not reversed
         (kl.euler_from_matrix(R_try, "XYZ"), "extrinsic"),        # upper case: moving axes
         (np.rad2deg(zyx_generic(R_try)[::-1]), "degrees"),
     ],
-    "03.4": [("b", "det"), ("c", "unreachable"), ("d", "numerical")],
-    "03.5": [
+    "03.5": [("b", "det"), ("c", "unreachable"), ("d", "numerical")],
+    "03.6": [
         (zyx_plus_branch_everywhere, "sign"),
         (zyx_no_lock, "gimbal"),
         (zyx_generic, "gimbal"),

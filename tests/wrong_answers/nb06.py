@@ -16,6 +16,16 @@ def _conjugation_matrix(q, first_conjugate=False):
     return sp.Matrix([v.b, v.c, v.d]).jacobian([x, y, z])
 
 
+def plane_matrix(z_new, real_first=True):
+    """The 2×2 matrix read off x' + i y' = z_new, as the notebook does it."""
+    parts = [sp.re(z_new), sp.im(z_new)]
+    return sp.Matrix(parts if real_first else parts[::-1]).jacobian([x, y])
+
+
+z_turned = sp.expand(sp.exp(sp.I * theta) * (x + sp.I * y), complex=True)
+z_half = sp.expand(sp.exp(sp.I * theta / 2) * (x + sp.I * y), complex=True)   # "as for q"
+z_back = sp.expand(sp.exp(-sp.I * theta) * (x + sp.I * y), complex=True)      # e^{−iθ}
+
 q_z_half = sp.Quaternion(sp.cos(theta / 2), 0, 0, sp.sin(theta / 2))
 q_z_full = sp.Quaternion(sp.cos(theta), 0, 0, sp.sin(theta))          # the half angle forgotten
 
@@ -45,6 +55,12 @@ q_perm = kl.quat_from_axis_angle([1.0, 1.0, 1.0], np.deg2rad(120))
 q_z90 = kl.quat_from_axis_angle([0.0, 0.0, 1.0], np.pi / 2)
 
 WRONG = {
+    "06.0": [
+        (plane_matrix(z_turned).T, "transposed"),            # (x', y') read down the columns
+        (plane_matrix(z_back), "transposed"),                 # turned the other way
+        (plane_matrix(z_turned, real_first=False), "re im"),
+        (plane_matrix(z_half), "half angle"),
+    ],
     "06.1": [("a", "dot product"), ("b", "symmetric"), ("d", "unit")],
     "06.2": [
         (_conjugation_matrix(q_z_half, first_conjugate=True), "conjugate"),   # q̄ p q

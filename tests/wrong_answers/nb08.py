@@ -50,6 +50,66 @@ def rotation_transposed(xyz, rpy):  # R(rpy)ᵀ: the parent's axes in the child 
     return kl.transform((kl.rotz(y) @ kl.roty(p) @ kl.rotx(r)).T, xyz)
 
 
+# 08.6: a cylinder along y turned onto an axis u, each with one slip
+E_Y = np.array([0.0, 1.0, 0.0])
+
+
+def _along_y(u_hat):
+    return np.eye(3) if u_hat[1] > 0 else kl.rotx(np.pi)
+
+
+def turned_backwards(u):            # û × e_y: the turn from û to e_y
+    u_hat = np.asarray(u, float) / np.linalg.norm(u)
+    k = np.cross(u_hat, E_Y)
+    if np.linalg.norm(k) < 1e-12:
+        return _along_y(u_hat)
+    return kl.matrix_from_axis_angle(k, np.arccos(u_hat @ E_Y))
+
+
+def not_normalised(u):              # the file's axis taken as a unit vector
+    u = np.asarray(u, float)
+    k = np.cross(E_Y, u)
+    if np.linalg.norm(k) < 1e-12:
+        return _along_y(u)
+    return kl.matrix_from_axis_angle(k, np.arccos(np.clip(u[1], -1, 1)))
+
+
+def angle_from_arcsin(u):           # |e_y × û| = sin θ, so θ = arcsin(...)
+    u_hat = np.asarray(u, float) / np.linalg.norm(u)
+    k = np.cross(E_Y, u_hat)
+    if np.linalg.norm(k) < 1e-12:
+        return _along_y(u_hat)
+    return kl.matrix_from_axis_angle(k, np.arcsin(np.linalg.norm(k)))
+
+
+def forgot_minus_y(u):              # "no cross product, no turn"
+    u_hat = np.asarray(u, float) / np.linalg.norm(u)
+    k = np.cross(E_Y, u_hat)
+    if np.linalg.norm(k) < 1e-12:
+        return np.eye(3)
+    return kl.matrix_from_axis_angle(k, np.arctan2(np.linalg.norm(k), u_hat @ E_Y))
+
+
+def rodrigues_unnormalised(u):      # Rodrigues by hand with K of e_y × û, |e_y × û| = sin θ
+    u_hat = np.asarray(u, float) / np.linalg.norm(u)
+    k = np.cross(E_Y, u_hat)
+    if np.linalg.norm(k) < 1e-12:
+        return _along_y(u_hat)
+    c = u_hat @ E_Y
+    K = kl.skew(k)
+    return np.eye(3) + np.sin(np.arccos(c)) * K + (1 - c) * K @ K
+
+
+def divides_by_zero(u):             # the axis normalised without a look at u ∥ y
+    u_hat = np.asarray(u, float) / np.linalg.norm(u)
+    k = np.cross(E_Y, u_hat)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        k = k / np.linalg.norm(k)
+    theta = np.arctan2(np.linalg.norm(np.cross(E_Y, u_hat)), u_hat @ E_Y)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(theta) * K + (1 - np.cos(theta)) * K @ K
+
+
 WRONG = {
     "08.1": [(intrinsic, "extrinsic"), (letters_read_backwards, "sequence"),
              (in_degrees, "degrees"), (rotate_then_translate, "order"),
@@ -71,4 +131,7 @@ WRONG = {
         (j1.origin @ kl.transform(p=0.7 * j1.axis), "base"),
     ],
     "08.5": [("a", "limits"), ("c", "continuous")],
+    "08.6": [(turned_backwards, "transposed"), (not_normalised, "unit"),
+             (angle_from_arcsin, "arcsin"), (forgot_minus_y, "antiparallel"),
+             (rodrigues_unnormalised, "rotation"), (divides_by_zero, "parallel")],
 }

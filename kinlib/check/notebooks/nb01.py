@@ -1,4 +1,5 @@
-"""Notebook 01 · spatial descriptions: positions, rotation matrices, frames, mappings."""
+"""Notebook 01 · spatial descriptions: positions, rotation matrices, which matrices keep
+lengths, frames, mappings."""
 
 import numpy as np
 
@@ -36,6 +37,41 @@ def _roty_sym():
     return roty(sp.Symbol("theta", real=True))
 
 
+def _candidates():
+    """The four matrices of exercise 01.5, as the notebook gives them: a rotation, the swap
+    of x and y, a shear, and unit columns at 45° to each other."""
+    from ... import matrix_from_axis_angle
+
+    s = np.sqrt(0.5)
+    return [matrix_from_axis_angle([1.0, 2.0, 2.0], 0.9),
+            np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]),
+            np.array([[1.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
+            np.array([[1.0, s, 0.0], [0.0, s, 0.0], [0.0, 0.0, 1.0]])]
+
+
+def _keeps_length():
+    """Which candidates keep the length of every vector: tried on random vectors (the
+    definition, not the theorem MᵀM = I)."""
+    P = np.random.default_rng(1).normal(size=(3, 200))
+    return np.array([np.allclose(np.linalg.norm(M @ P, axis=0), np.linalg.norm(P, axis=0))
+                     for M in _candidates()], dtype=float)
+
+
+def _det_one():
+    return np.array([np.isclose(np.linalg.det(M), 1.0) for M in _candidates()], dtype=float)
+
+
+def _rotations_only():
+    from ... import is_rotation
+
+    return np.array([is_rotation(M) for M in _candidates()], dtype=float)
+
+
+def _unit_columns():
+    return np.array([np.allclose(np.linalg.norm(M, axis=0), 1.0) for M in _candidates()],
+                    dtype=float)
+
+
 EXERCISES = [
     choice("01.1", "predict", "when a position vector keeps its length",
            {"a": "for any two frames", "b": "when {A} and {B} share their origin",
@@ -69,13 +105,30 @@ EXERCISES = [
                                  "= det(R)² = det(I) = 1, so det R is +1 or −1")},
            explain="det(R)² = det(Rᵀ) det(R) = det(RᵀR) = det(I) = 1. Which of the two signs "
                    "a rotation has: the demonstration"),
-    value("01.5", "compute", "ᴮŶ_A: a row of ᴬR_B", lambda: _R_AB()[1, :],
+    value("01.5", "predict", "which matrices keep every length", _keeps_length,
+          Mistake("determinant", "det M = +1 is not what keeps lengths: the shear c has det 1 "
+                                 "and takes (0, 1, 0) to (0.5, 1, 0), of length 1.118, while b "
+                                 "has det −1 and keeps every length. ‖Mp‖ = ‖p‖ for all p "
+                                 "exactly when MᵀM = I", _det_one),
+          Mistake("reflection", "b keeps every length too: it swaps x and y, a reflection in "
+                                "the plane x = y. Its columns are orthonormal, MᵀM = I, which "
+                                "is all ‖Mp‖ = ‖p‖ needs; det = −1 only flips the handedness",
+                  _rotations_only),
+          Mistake("unit columns", "unit columns are not enough: d's columns have length 1 but "
+                                  "meet at 45°. ‖Mp‖² = Σᵢⱼ pᵢpⱼ (colᵢ · colⱼ) keeps the cross "
+                                  "terms unless the columns are also perpendicular",
+                  _unit_columns),
+          what="four answers, True or False",
+          explain="a (a rotation) and b (the swap of x and y: a reflection, det −1) keep every "
+                  "length; c (a shear, det +1) and d (unit columns at 45°) do not. "
+                  "‖Mp‖ = ‖p‖ for every p exactly when MᵀM = I, whatever det M."),
+    value("01.6", "compute", "ᴮŶ_A: a row of ᴬR_B", lambda: _R_AB()[1, :],
           TRANSPOSED.of(lambda: _R_AB()[:, 1], "that is a column: ᴬŶ_B, the Y axis of {B} "
                                                "in {A}. The axes of {A} written in {B} are "
                                                "the rows of ᴬR_B (ᴮR_A = ᴬR_Bᵀ)"),
           explain="ᴮŶ_A is the second column of ᴮR_A = ᴬR_Bᵀ, i.e. the second row of ᴬR_B: "
                   "`R_AB[1, :]`"),
-    value("01.6", "compute", "ᴬP = ᴬR_B ᴮP + ᴬP_BORG", lambda: _rx45() @ P_B + P_BORG,
+    value("01.7", "compute", "ᴬP = ᴬR_B ᴮP + ᴬP_BORG", lambda: _rx45() @ P_B + P_BORG,
           Mistake("translation", "the translation is missing: add ᴬP_BORG = (0, 0, 2), the "
                                  "origin of {B} in {A}", lambda: _rx45() @ P_B),
           TRANSPOSED.of(lambda: _rx45().T @ P_B + P_BORG,
@@ -86,7 +139,7 @@ EXERCISES = [
                                        [0, np.sin(-45), np.cos(-45)]]) @ P_B + P_BORG),
           explain="ᴬP = ᴬR_B ᴮP + ᴬP_BORG ≈ (0, 1.414, 2): rotate ᴮP into the orientation "
                   "of {A} (the intermediate frame {C}), then add the origin of {B}"),
-    value("01.7", "compute", "a fixed point described in a frame turned +30°", _turned,
+    value("01.8", "compute", "a fixed point described in a frame turned +30°", _turned,
           TRANSPOSED.of(lambda: _turned() * [1, -1, 1],
                         "that is the operator Rz(+30°) ᴬP, which moves the point forward; "
                         "describing the fixed point in the turned frame uses ᴮR_A = ᴬR_Bᵀ "

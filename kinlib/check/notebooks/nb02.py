@@ -1,5 +1,5 @@
 """Notebook 02 · transform arithmetic: operators, compound transforms, the closed-form
-inverse, the cost of the two orders of products."""
+inverse, the cost of the two orders of products, a line vector in another frame."""
 
 import numpy as np
 
@@ -70,6 +70,38 @@ def _mults(n: int = 4):
     """Multiplications with full n×n arithmetic: T (T P) is two matrix–vector products
     (n² each), (T T) P a matrix–matrix product (n³) and one matrix–vector product."""
     return np.array([2 * n * n, n ** 3 + n * n])
+
+
+# ---- 02.7: a line vector (a force on its line of action) in another frame ---------------
+
+LINE_B = np.array([5.0, 0.0, -20.0, -2.0, 6.0, -0.5])   # [f_B (N); m_B (N·m)], as the notebook
+
+
+def _grip():
+    """ᴬT_B of the gripper in exercise 02.7 and its blocks R, t."""
+    from ... import matrix_from_euler, transform
+
+    T = transform(matrix_from_euler(np.deg2rad([90.0, 30.0, 0.0]), "ZYX"), [0.5, 1.0, 0.8])
+    return T, T[:3, :3], T[:3, 3]
+
+
+def _line_in_A():
+    """The line in {A} from its definition: a point of it (the one nearest B's origin,
+    f × m / |f|²) mapped as a point, the force as a free vector, m_A = p_A × f_A."""
+    from ... import transform_points, transform_vectors
+
+    T, _, _ = _grip()
+    f, m = LINE_B[:3], LINE_B[3:]
+    point = np.cross(f, m) / (f @ f)
+    f_A = transform_vectors(T, f)
+    return np.r_[f_A, np.cross(transform_points(T, point), f_A)]
+
+
+def _line_with(moment):
+    """[R f_B; moment(R, t, f_B, m_B)]: a wrong moment with the force rotated right."""
+    _, R, t = _grip()
+    f, m = LINE_B[:3], LINE_B[3:]
+    return np.r_[R @ f, moment(R, t, f, m)]
 
 
 EXERCISES = [
@@ -158,4 +190,27 @@ EXERCISES = [
           what="two numbers",
           explain="32 against 80: for one point, pass the point through the chain; the "
                   "count below shows when the compound, computed once, pays off."),
+    value("02.7", "compute", "a line vector (f, m) in another frame", _line_in_A,
+          Mistake("free vector", "you rotated the moment like a free vector, R m_B: it is the "
+                                 "moment about the origin, and A's origin is not B's. The "
+                                 "line's points move by t, so m_A = R m_B + t × f_A",
+                  lambda: _line_with(lambda R, t, f, m: R @ m)),
+          Mistake("point", "you mapped f and m like points, adding t: neither is a point. "
+                           "f is turned only (a free vector), and the translation enters "
+                           "the moment alone, as t × f_A",
+                  lambda: np.r_[_grip()[1] @ LINE_B[:3] + _grip()[2],
+                                _grip()[1] @ LINE_B[3:] + _grip()[2]]),
+          Mistake("cross order", "the new term has the wrong sign: m = p × f with the point "
+                                 "first, so it is t × f_A, not f_A × t",
+                  lambda: _line_with(lambda R, t, f, m: R @ m + np.cross(R @ f, t))),
+          Mistake("unrotated", "t × f_B mixes two frames: t is written in {A}, f_B in {B}; "
+                               "the term is t × f_A with f_A = R f_B",
+                  lambda: _line_with(lambda R, t, f, m: R @ m + np.cross(t, f))),
+          SWAPPED.of(lambda: np.r_[_line_in_A()[3:], _line_in_A()[:3]],
+                     "the two halves are swapped: the line is np.r_[f_A, m_A], the force "
+                     "first, as line_B is"),
+          what="six numbers [f_A; m_A]",
+          explain="f_A = R f_B, a free vector; m_A = R m_B + t × f_A: every point of the line "
+                  "moved by t, and (R p + t) × R f = R (p × f) + t × R f. A line vector feels "
+                  "the translation through its moment only."),
 ]

@@ -1,11 +1,13 @@
-"""Notebook 03 · Euler angles and fixed angles: building ᴬR_B for moving and fixed axes,
-the Z-Y-X inverse problem, its singularity and the two gimbal-lock branches."""
+"""Notebook 03 · Euler angles and fixed angles: the order of two turns, building ᴬR_B for
+moving and fixed axes, the Z-Y-X inverse problem, its singularity and the two gimbal-lock
+branches."""
 
 import numpy as np
 
 from .._verdict import Mistake, Verdict, as_numeric, close
 from ..judges import euler_angles_judge
-from ._make import choice, expression, judged
+from ..mistakes import ORDER
+from ._make import choice, expression, judged, value
 
 
 def _abg():
@@ -66,12 +68,28 @@ def _similarity_backwards():
     return second * (second * _rot("z", a) * second.T)
 
 
-_EXTRINSIC_03_1 = ("this is Rx(γ) Ry(β) Rz(α): the turns multiplied right to left, as for "
+# ---- 03.1: two quarter turns in both orders -------------------------------------------
+
+P_TURNED = np.array([1.0, 0.0, 1.0])
+
+
+def _two_turns(angle=np.pi / 2, first_only=False):
+    """Rows: the point P_TURNED turned about x, then about y (both fixed); and about y,
+    then about x. ``first_only``: the second turn forgotten."""
+    from ... import rotx, roty
+
+    Rx, Ry = rotx(angle), roty(angle)
+    if first_only:
+        return np.array([Rx @ P_TURNED, Ry @ P_TURNED])
+    return np.array([Ry @ Rx @ P_TURNED, Rx @ Ry @ P_TURNED])
+
+
+_EXTRINSIC_EULER = ("this is Rx(γ) Ry(β) Rz(α): the turns multiplied right to left, as for "
                    "fixed axes. About the moving axes each new turn is described in the frame "
                    "before it and multiplies on the right, as in ᴬR_B = ᴬR_B′ ᴮ′R_B″ ᴮ″R_B")
 _RY_SIGN = ("the sines of R_Y(β) have swapped signs: R_Y(β) = [[cβ, 0, sβ], [0, 1, 0], "
             "[−sβ, 0, cβ]] (turning about y takes z towards x)")
-_EXTRINSIC_03_2 = ("this is Rx(γ) Ry(β) Rz(α): you multiplied the turns left to right, as for "
+_EXTRINSIC_FIXED = ("this is Rx(γ) Ry(β) Rz(α): you multiplied the turns left to right, as for "
                    "moving axes. A turn about a fixed axis multiplies on the left: the "
                    "similarity transform gives ᴬR_B″ = ᴬR_B′ (ᴬR_B′)ᵀ Ry(β) ᴬR_B′ = Ry(β) Rx(γ)")
 
@@ -163,8 +181,29 @@ def _zyx_judge():
 
 
 EXERCISES = [
-    expression("03.1", "ᴬR_B for Z-Y-X Euler angles", _zyx,
-               Mistake("extrinsic", _EXTRINSIC_03_1, _reversed),
+    value("03.1", "predict", "one point, two quarter turns, two orders", _two_turns,
+          ORDER.of(lambda: _two_turns()[::-1],
+                   "the rows are swapped: the turn applied first stands on the right, so "
+                   "'about x, then about y' is R_Y(90°) R_X(90°) p"),
+          Mistake("sense", "both turns go the wrong way: a positive turn about x takes y to "
+                           "z and z to −y, about y it takes z to x and x to −z (the "
+                           "right-hand rule: thumb along the axis, the fingers curl the "
+                           "positive way)", lambda: _two_turns(-np.pi / 2)),
+          Mistake("commute", "the two rows are the same: two turns about different axes do "
+                             "not commute, R_Y R_X ≠ R_X R_Y — work out each order step by step",
+                  lambda: _two_turns()[[0, 0]]),
+          Mistake("commute", "the two rows are the same: two turns about different axes do "
+                             "not commute, R_Y R_X ≠ R_X R_Y — work out each order step by step",
+                  lambda: _two_turns()[[1, 1]]),
+          Mistake("one turn", "that is where the first turn alone takes p: turn the result "
+                              "once more, about the other axis",
+                  lambda: _two_turns(first_only=True)),
+          what="a 2×3 array",
+          explain="about x, then y: (1, 0, 1) → (1, −1, 0) → (0, −1, −1); about y, then x: "
+                  "(1, 0, 1) → (1, 0, −1) → (1, 1, 0). Linearity helps: p = x̂ + ẑ, so turn "
+                  "the two axes and add."),
+    expression("03.2", "ᴬR_B for Z-Y-X Euler angles", _zyx,
+               Mistake("extrinsic", _EXTRINSIC_EULER, _reversed),
                Mistake("sequence", "this is Rx(α) Ry(β) Rz(γ), the X-Y-Z Euler sequence: in "
                                    "Z-Y-X, α turns about z, β about the new y, γ about the "
                                    "newest x", _letters_as_xyz),
@@ -174,8 +213,8 @@ EXERCISES = [
                     "described in the frame before it, so it multiplies on the right: "
                     "ᴬR_B = Rz(α) Ry(β) Rx(γ). Seed 001 prints this product entry by entry "
                     "as its eq. 4.66 (the roll–pitch–yaw matrix)."),
-    expression("03.2", "ᴬR_B for X-Y-Z fixed angles", _xyz_fixed,
-               Mistake("extrinsic", _EXTRINSIC_03_2, _reversed),
+    expression("03.3", "ᴬR_B for X-Y-Z fixed angles", _xyz_fixed,
+               Mistake("extrinsic", _EXTRINSIC_FIXED, _reversed),
                Mistake("similarity", "the similarity transform is the wrong way round: a "
                                      "rotation M about a fixed axis, described in the current "
                                      "frame {B′}, is N = (ᴬR_B′)⁻¹ M ᴬR_B′, the inverse on the "
@@ -189,13 +228,13 @@ EXERCISES = [
                explain="a turn about a fixed axis multiplies on the left: the similarity "
                     "transforms collapse, ᴬR_B″ = ᴬR_B′ (ᴬR_B′)⁻¹ Ry(β) ᴬR_B′ = Ry(β) Rx(γ), "
                     "then ᴬR_B = Rz(α) Ry(β) Rx(γ) — the matrix of the Z-Y-X Euler angles of "
-                    "03.1."),
-    judged("03.3", "compute", "the X-Y-Z fixed angles of R_try", _fixed_angles_judge(),
+                    "03.2."),
+    judged("03.4", "compute", "the X-Y-Z fixed angles of R_try", _fixed_angles_judge(),
            diagnoses=("sequence", "extrinsic", "degrees"),
            explain="x-y-z fixed angles and Z-Y-X Euler angles both build Rz(α) Ry(β) Rx(γ): "
                    "the fixed angles (γ, β, α) are the Euler angles (α, β, γ) in reverse "
                    "order."),
-    choice("03.4", "predict", "the physical interpretation of the Z-Y-X singularity",
+    choice("03.5", "predict", "the physical interpretation of the Z-Y-X singularity",
            {"a": "the first and third rotation axes line up: a degree of freedom is lost",
             "b": "R becomes singular (det R = 0)",
             "c": "orientations with β = ±90° cannot be reached",
@@ -210,7 +249,7 @@ EXERCISES = [
            explain="at β = ±90° the newest x lies along ∓Ẑ_A: the first and third turns are "
                    "about one line. R is still a rotation, reached by infinitely many (α, γ); "
                    "the demonstration below shows it."),
-    judged("03.5", "implement", "Z-Y-X Euler angles with both gimbal-lock branches",
+    judged("03.6", "implement", "Z-Y-X Euler angles with both gimbal-lock branches",
            _zyx_judge(), cases=_zyx_cases(),
            diagnoses=("sign", "gimbal", "sequence", "degrees"),
            explain="at the lock R holds only γ − α (β = +90°) or γ + α (β = −90°): with α = 0 "

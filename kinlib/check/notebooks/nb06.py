@@ -1,11 +1,26 @@
-"""Notebook 06 · quaternions: the product, conjugation, Euler parameters, checkpoints,
-composition."""
+"""Notebook 06 · quaternions: the plane's rotations as complex numbers, the product,
+conjugation, Euler parameters, checkpoints, composition."""
 
 import numpy as np
 
 from .._verdict import RIGHT, Mistake, Verdict, as_numeric, close, fmt
 from ..mistakes import CONJUGATE, DEGREES, HALF_ANGLE, ORDER, XYZW
 from ._make import choice, expression, judged, value
+
+# --- 06.0 · the 2×2 matrix of z ↦ e^{iθ} z -----------------------------------------------
+
+def _plane_rotation(half=False, rows_swapped=False):
+    """The 2×2 block of kinlib's R_Z(θ) (or R_Z(θ/2)): the rotation of the x-y plane."""
+    def model():
+        import sympy as sp
+
+        from ... import rotz
+
+        theta = sp.Symbol("theta", real=True)
+        M = rotz(theta / 2 if half else theta)[:2, :2]
+        return M[::-1, :] if rows_swapped else M
+    return model
+
 
 # --- 06.1 · which term of the product changes sign when the factors are swapped ---------
 
@@ -158,6 +173,17 @@ def _then():
 
 
 EXERCISES = [
+    expression("06.0", "the 2×2 matrix of z ↦ e^{iθ} z", _plane_rotation(),
+               Mistake("re im", "the rows are swapped: x′ is the real part of e^{iθ}(x + iy), "
+                                "y′ the imaginary part", _plane_rotation(rows_swapped=True)),
+               HALF_ANGLE.of(_plane_rotation(half=True),
+                             "your matrix turns by θ/2: in the plane z ↦ e^{iθ} z turns by the "
+                             "whole angle. The half angle belongs to the quaternion, whose "
+                             "sandwich q p q̄ multiplies by q twice"),
+               what="a 2×2 sympy Matrix in theta", swaps=(), diagnoses=("transposed",),
+               explain="e^{iθ}(x + iy) = (x cos θ − y sin θ) + i (x sin θ + y cos θ): the matrix "
+                       "is [[cos θ, −sin θ], [sin θ, cos θ]], the top-left block of R_Z(θ) in "
+                       "notebook 01. Multiplying by a unit complex number turns the plane."),
     choice("06.1", "predict", "which term of q1 q2 changes sign when the factors swap",
            {"a": "the scalar part r1 r2 − v1·v2", "b": "r1 v2 + r2 v1", "c": "v1 × v2",
             "d": "none: only non-unit quaternions fail to commute"}, _flipping_term(),

@@ -1,11 +1,11 @@
 """Notebook 08 · URDF and the matrix stack: joint origins, the product on the stack,
-the joint motion, joint limits."""
+the joint motion, joint limits, drawing a joint axis with the cross product."""
 
 import numpy as np
 
-from .._verdict import Mistake
+from .._verdict import RIGHT, Mistake, Verdict, as_numeric, close, fmt
 from ..mistakes import DEGREES, EXTRINSIC, ORDER, SEQUENCE, TRANSPOSED
-from ._make import choice, function, value
+from ._make import choice, function, judged, value
 
 # ---- 08.1: a joint origin from xyz and rpy --------------------------------------------
 
@@ -73,6 +73,93 @@ def _slide(axis=None):
 
 def _link2():
     return _base() @ _robot().joint("joint1").origin @ _slide()
+
+
+# ---- 08.6: a three.js cylinder (along y) turned onto a joint axis ------------------------
+
+_E_Y = np.array([0.0, 1.0, 0.0])
+
+
+def _axis_cases():
+    """The test robot's three axes as the file writes them (not unit vectors), the z axis,
+    two axes below the x-z plane (obtuse angles), and u along +y and along −y."""
+    axes = ([-0.9, 0.15, 0.0], [-0.707, 0.707, 0.0], [0.707, -0.707, 0.0], [0.0, 0.0, 1.0],
+            [0.3, -0.9, 0.2], [2.0, 1.0, -2.0], [0.0, 2.0, 0.0], [0.0, -1.0, 0.0])
+    return [(np.array(u),) for u in axes]
+
+
+def _turn(axis, angle):
+    from ... import matrix_from_axis_angle
+
+    return matrix_from_axis_angle(axis, angle)
+
+
+def _shortest_turn(u):
+    """The rotation about e_y × û by the angle between them (a half turn about x for
+    û = −e_y): one of the right answers, shown in a message."""
+    u_hat = u / np.linalg.norm(u)
+    k = np.cross(_E_Y, u_hat)
+    if np.linalg.norm(k) < 1e-12:
+        return np.eye(3) if u_hat[1] > 0 else np.diag([1.0, -1.0, -1.0])
+    return _turn(k, np.arctan2(np.linalg.norm(k), u_hat[1]))
+
+
+def _axis_judge(args, got):
+    """Right: any rotation R with R e_y = u/|u| (the cylinder is round about its own y)."""
+    from ... import is_rotation
+
+    (u,) = args
+    u_hat = u / np.linalg.norm(u)
+    along_y = np.linalg.norm(np.cross(_E_Y, u_hat)) < 1e-12
+    expected = _shortest_turn(u)
+    R, bad = as_numeric(got, (3, 3), "a 3×3 rotation matrix")
+    if R is None:
+        if bad.key == "nan" and along_y:
+            return Verdict(False, "parallel", "NaN for u along y: there e_y × û = 0 and "
+                                              "normalising it divides by zero. Handle u ∥ y "
+                                              "first: no turn for +y, a half turn about x for "
+                                              "−y", expected)
+        return Verdict(bad.ok, bad.key, bad.message, expected)
+    image = R @ _E_Y
+    if is_rotation(R) and close(image, u_hat, 1e-6):
+        return RIGHT
+    if along_y and u_hat[1] < 0 and close(image, _E_Y, 1e-6):
+        return Verdict(False, "antiparallel", "for u along −y the cross product vanishes "
+                                              "too, but the cylinder must be turned upside "
+                                              "down: a half turn about an axis perpendicular "
+                                              "to y, e.g. kl.rotx(np.pi)", expected)
+    if not is_rotation(R):
+        return Verdict(False, "rotation", "your matrix is not a rotation (RᵀR ≠ I or det R ≠ 1): "
+                                          "if you wrote Rodrigues' formula yourself, its axis "
+                                          "must be a unit vector, and e_y × û has length "
+                                          "sin θ", expected)
+    if close(R.T @ _E_Y, u_hat, 1e-6):
+        return Verdict(False, "transposed", "you turned the wrong way: that R turns û onto "
+                                            "e_y. The axis from e_y towards û is e_y × û (not "
+                                            "û × e_y), turned by +θ", expected)
+    k = np.cross(_E_Y, u)
+    if np.linalg.norm(k) > 1e-12:
+        for key, angle, message in (
+                ("unit", np.arccos(np.clip(u[1], -1.0, 1.0)),
+                 "normalise u first: the file's axes are not unit vectors, so e_y · u is not "
+                 "cos θ"),
+                ("arcsin", np.arcsin(np.clip(np.linalg.norm(np.cross(_E_Y, u_hat)), 0.0, 1.0)),
+                 "arcsin |e_y × û| is at most 90°: for an axis below the x-z plane (u_y < 0) "
+                 "the angle is obtuse. Take θ from both sin θ = |e_y × û| and cos θ = e_y · û: "
+                 "atan2, or arccos(e_y · û)")):
+            wrong = _turn(k, angle) @ _E_Y
+            if close(image, wrong, 1e-6) and not close(wrong, u_hat, 1e-6):
+                return Verdict(False, key, message, expected)
+    return Verdict(False, "wrong", f"R e_y = {fmt(image)}, not û = u/|u| = {fmt(u_hat)}",
+                   expected)
+
+
+def _axis_error_hint(case, text):
+    (u,) = case
+    if np.linalg.norm(np.cross(_E_Y, u)) < 1e-12:
+        return ("for u along y, e_y × u = 0 gives no axis to turn about: handle that case "
+                "first (no turn for +y, a half turn about x for −y)")
+    return None
 
 
 EXERCISES = [
@@ -176,4 +263,12 @@ EXERCISES = [
             "c": ("continuous", "a continuous joint (a wheel, an endless wrist) has no limits: "
                                 "q may grow without bound, q and q + 2π give the same pose, "
                                 "and robot.limits holds ±∞ for it")}),
+    judged("08.6", "implement", "a cylinder along y turned onto a joint axis", _axis_judge,
+           cases=_axis_cases(), on_error=_axis_error_hint,
+           diagnoses=("transposed", "unit", "arcsin", "antiparallel", "rotation",
+                      "parallel"),
+           explain="e_y × û is the axis of the shortest turn and θ = atan2(|e_y × û|, e_y · û) "
+                   "its angle, in [0, π]; along ±y the cross product vanishes and names no "
+                   "axis, so those two cases are handled apart. Any turn about û afterwards "
+                   "is right too: the cylinder is round."),
 ]
