@@ -11,7 +11,7 @@ count; afterwards the notebook is closed and its kernel shut down. Then:
   saves it;
 - every exercise's check ran, in order, and says "not answered yet" (the blank student
   edition runs top to bottom: nothing depends on an answer);
-- the notebooks that show 3-D viewers (04, 08–11, 13, 14) show them, and each viewer draws a
+- the notebooks that show 3-D viewers (04, 08–11, 13–15) show them, and each viewer draws a
   robot: at least ``AXIS_SEEN`` pixels of kinlib's orange joint axes; the control removes
   the robot from that same viewer and the count must fall to ``EMPTY`` or below;
 - sliders are rendered where the notebook makes them (04: the Euler-rate determinant;
@@ -53,7 +53,8 @@ NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
 NAMES = sorted(p.stem for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb"))
 VIEWERS = {"04_gimbal_lock", "08_urdf_and_matrix_stack", "09_denavit_hartenberg",
            "10_inverse_kinematics_2r", "11_numerical_inverse_kinematics",
-           "13_singularities_and_manipulability", "14_configuration_space_planning"}
+           "13_singularities_and_manipulability", "14_configuration_space_planning",
+           "15_se3_twists_and_poe"}
 #: notebook → how many sliders it renders (04: β, then the gimbal robot's three joints)
 SLIDERS = {"04_gimbal_lock": 4, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}
 #: the README's pictures: notebook → file name

@@ -10,7 +10,7 @@ in headless Chromium with all http(s) blocked and asserts:
 - the mathematics is typeset: MathJax finished, at least as many formulas as the
   notebook's Markdown has ``$…$``/``$$…$$`` pairs, no error node, and no raw TeX
   (``$`` or ``\\command``) left in the text;
-- the 3-D scenes (04, 08–11, 13, 14), drawn from the notebooks' saved widget state, show their
+- the 3-D scenes (04, 08–11, 13–15), drawn from the notebooks' saved widget state, show their
   robot (filled joint-axis pixels and the robot's names in the three.js scene; 11's
   carries its IK animation, which plays); removing the robot in that same page empties the
   picture (the control);
@@ -54,7 +54,8 @@ SCENES = {"04_gimbal_lock": {"gimbal", "body", "alpha_z", "gamma_x"},
           "10_inverse_kinematics_2r": {"up", "down", "link2"},
           "11_numerical_inverse_kinematics": {"puma560", "link1", "link6", "line"},
           "13_singularities_and_manipulability": {"puma560", "link6", "joint5"},
-          "14_configuration_space_planning": {"arm", "obstacles", "link2"}}
+          "14_configuration_space_planning": {"arm", "obstacles", "link2"},
+          "15_se3_twists_and_poe": {"ur5", "link6", "joint5", "screws"}}
 #: pages whose scene carries a viz.animate trajectory (the IK solve, the planned path)
 ANIMATED = {"11_numerical_inverse_kinematics", "14_configuration_space_planning"}
 SLIDERS = {"04_gimbal_lock": 4, "08_urdf_and_matrix_stack": 3, "09_denavit_hartenberg": 6}

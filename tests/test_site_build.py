@@ -36,7 +36,7 @@ def _notebook(folder: Path, name: str, cells: list) -> Path:
 
 def test_outline_reads_titles_and_goals_of_the_course():
     pages = outline(NOTEBOOKS)
-    assert [p.number for p in pages] == list(range(1, 15))
+    assert [p.number for p in pages] == list(range(1, 16))
     first = pages[0]
     assert first.title.startswith("Spatial descriptions") and first.href.endswith(".html")
     raw = json.loads((NOTEBOOKS / f"{first.name}.ipynb").read_text())
@@ -59,7 +59,7 @@ def test_outline_refuses_a_notebook_without_a_title(tmp_path):
 
 def test_index_page_lists_both_parts_and_renders_goals_as_html():
     page = index_html(outline(NOTEBOOKS))
-    assert page.count('class="kl-lesson"') == 14
+    assert page.count('class="kl-lesson"') == 15
     assert "Part 1" in page and "Part 2" in page and "<ol>" in page
     assert "tex-svg-full.js" in page and "https://" not in page
 

@@ -42,7 +42,7 @@ TEMPLATES = Path(__file__).resolve().parent / "templates"
 MARKER = ".kinlib-site"  # a directory holding it may be emptied by the next build
 #: the two parts of the course: (title, first notebook number, last)
 PARTS = (("Part 1 · Spatial descriptions and orientation", 1, 7),
-         ("Part 2 · Kinematic models, inverse and differential kinematics, planning", 8, 14))
+         ("Part 2 · Kinematic models, inverse and differential kinematics, planning", 8, 15))
 
 MATHJAX_VERSION = "3.2.2"
 #: sha256 of MathJax 3.2.2's es5/tex-svg-full.js (TeX input, SVG output: no web fonts)

@@ -1,4 +1,4 @@
-"""The exercises of the course's notebooks, one module per notebook (``nb01`` … ``nb14``),
+"""The exercises of the course's notebooks, one module per notebook (``nb01`` … ``nb15``),
 each defining ``EXERCISES``, a list of :class:`~kinlib.check.Exercise` in order."""
 
 from __future__ import annotations
