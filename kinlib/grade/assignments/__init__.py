@@ -23,4 +23,5 @@ ASSIGNMENTS = {
     "03_jacobian_and_ik": _lazy("jacobian_ik"),
     "04_planning": _lazy("planning"),
     "05_orientation_kinematics": _lazy("orientation"),
+    "06_differential_kinematics": _lazy("differential"),
 }
