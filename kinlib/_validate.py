@@ -164,8 +164,10 @@ def broadcast(*arrays_with_tails: tuple[np.ndarray, int, str]) -> tuple[int, ...
 def _sympy_basic(x) -> bool:
     """A sympy object whose class lives in no sympy module (e.g. an applied undefined
     function ``Function("theta")(t)``, whose class is made on the fly)."""
-    sympy = sys.modules.get("sympy")
-    return sympy is not None and isinstance(x, sympy.Basic)
+    # getattr: another thread may be importing sympy right now (half made in sys.modules);
+    # then x cannot be a sympy object yet (making one waits for the import to finish)
+    basic = getattr(sys.modules.get("sympy"), "Basic", None)
+    return basic is not None and isinstance(x, basic)
 
 
 def _is_sym(x) -> bool:

@@ -4,11 +4,13 @@ answers (lists, another product, an iterative stack) are accepted.
 
 Submissions are built from the source notebook's own code with one mistake patched in per
 function; ``fk_dh`` calls a right copy ``_dh`` of ``dh_matrix`` so that each function
-carries exactly its own mistake.
+carries exactly its own mistake. ``dh_symbolic`` (the DH matrix derived with sympy) is
+judged symbolically: see also ``test_grader_symbolic.py``.
 """
 
 import numpy as np
 import pytest
+import sympy as sp
 from grading_helpers import (
     by_function,
     misdiagnosed,
@@ -25,6 +27,10 @@ from kinlib.grade.assignments import forward_kinematics as F
 from kinlib.robots import autorob_test_robot, puma560
 
 NAME = "02_forward_kinematics"
+
+
+def _check(function):
+    return next(c for c in F.assignment().checks if c.function == function)
 
 
 # -- the references -------------------------------------------------------------------------
@@ -48,7 +54,7 @@ def test_dh_reference_is_the_product_of_the_four_factors():
 
 
 def test_fk_dh_reference_is_kinlibs_dh_robot():
-    for table, q in F.assignment().checks[1].make_cases(0):
+    for table, q in _check("fk_dh").make_cases(0):
         robot = kl.Robot.from_dh(_dh_rows(table))
         assert np.allclose(F.fk_dh_reference(table, q), robot.fk(q), atol=1e-12)
     puma = puma560()
@@ -93,7 +99,7 @@ def _by_hand(robot, q):
 
 
 def test_stack_reference_is_kinlibs_urdf_robot_and_the_hand_written_stack():
-    for robot, q in F.assignment().checks[2].make_cases(0):
+    for robot, q in _check("fk_matrix_stack").make_cases(0):
         ref = F.stack_reference(robot, q)
         loaded = kl.load_urdf(_urdf(robot)).link_poses(q)
         hand, model = _by_hand(robot, q), F.stack(robot, q)
@@ -109,13 +115,36 @@ def test_stack_reference_is_kinlibs_urdf_robot_and_the_hand_written_stack():
             assert np.allclose(ref[n], T), (key, n)
 
 
+def test_dh_symbolic_reference_is_the_product_of_the_four_factors():
+    """kinlib's symbolic A (the reference of dh_symbolic) is Rz Tz Tx Rx written out here,
+    and at numbers it is the numeric reference; on every case, with θ, d, a, α as given."""
+    for t, d, a, al in _check("dh_symbolic").make_cases(0):
+        c, s = sp.cos, sp.sin
+        Rz = sp.Matrix([[c(t), -s(t), 0, 0], [s(t), c(t), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+        Rx = sp.Matrix([[1, 0, 0, 0], [0, c(al), -s(al), 0], [0, s(al), c(al), 0],
+                        [0, 0, 0, 1]])
+        Tz, Tx = sp.eye(4), sp.eye(4)
+        Tz[2, 3], Tx[0, 3] = d, a
+        A = kl.dh_transform(theta=t, d=d, a=a, alpha=al)
+        assert sp.expand(A - Rz * Tz * Tx * Rx) == sp.zeros(4, 4)
+        free = sorted(A.free_symbols, key=str)
+        at = dict(zip(free, np.random.default_rng(1).uniform(-2, 2, len(free)), strict=True))
+        num = [float(sp.sympify(x).subs(at)) for x in (t, d, a, al)]
+        assert np.allclose(np.array(A.subs(at), dtype=float), F.dh(*num), atol=1e-12)
+
+
 # -- the cases ------------------------------------------------------------------------------
 def test_cases_cover_what_they_must():
     spec = F.assignment()
     cases = {c.function: c.make_cases(0) for c in spec.checks}
-    assert [c.points for c in spec.checks] == [8, 12, 14]
+    assert [c.points for c in spec.checks] == [5, 3, 12, 14]
     assert sum(map(len, cases.values())) >= 300
-    assert all(len(c) >= 90 for c in cases.values())
+    assert all(len(c) >= 90 for f, c in cases.items() if f != "dh_symbolic")
+    derivation = cases["dh_symbolic"]  # symbols under two names, an exact twist, a slider
+    assert len(derivation) == 4 and all(isinstance(x, sp.Basic | int) for c in derivation
+                                        for x in c)
+    assert {str(c[0]) for c in derivation[:2]} == {"theta", "theta_6"}
+    assert derivation[2][3] in (sp.pi / 2, -sp.pi / 2) and derivation[3][2] == 0
     dh = np.array(cases["dh_matrix"])
     assert (np.abs(dh[:, 3]) > 0.1).sum() > 60 and (dh[:, 3] == 0).sum() >= 5
     tables = [t for t, _ in cases["fk_dh"]]
@@ -255,7 +284,24 @@ STACK_MISTAKES = [
 ]
 
 
-TABLE = (("dh_matrix", DH_MISTAKES), ("fk_dh", FK_MISTAKES),
+DHS_RET = "return Rz * Tz * Tx * Rx"
+DHS_RZ = "Rz = sp.Matrix([[ct, -st, 0, 0], [st, ct, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])"
+DHS_RX = "Rx = sp.Matrix([[1, 0, 0, 0], [0, ca, -sa, 0], [0, sa, ca, 0], [0, 0, 0, 1]])"
+RZ_FLIPPED = DHS_RZ.replace("[[ct, -st, 0, 0], [st, ct", "[[ct, st, 0, 0], [-st, ct")
+RX_FLIPPED = DHS_RX.replace("[0, ca, -sa, 0], [0, sa, ca", "[0, ca, sa, 0], [0, -sa, ca")
+DHS_MISTAKES = [  # the DH matrix derived with sympy
+    ((DHS_RET, "return Rx * Tx * Rz * Tz"), "modified"),
+    (((DHS_RZ, RZ_FLIPPED), (DHS_RX, RX_FLIPPED)), "transposed"),
+    ((DHS_RET, "return (Rz * Tz * Tx * Rx).T"), "layout"),
+    ((DHS_RZ, RZ_FLIPPED), "theta sign"),
+    ((DHS_RX, RX_FLIPPED), "alpha sign"),
+    (("ct, st = sp.cos(theta), sp.sin(theta)\n    ca, sa = sp.cos(alpha), sp.sin(alpha)",
+      "ct, st = sp.cos(alpha), sp.sin(alpha)\n    ca, sa = sp.cos(theta), sp.sin(theta)"),
+     "swapped"),
+    (("Tz[2, 3], Tx[0, 3] = d, a", "Tz[2, 3], Tx[0, 3] = a, d"), "swapped"),
+    ((DHS_RET, "return np.eye(4)  # (to do)"), "numbers"),
+]
+TABLE = (("dh_matrix", DH_MISTAKES), ("dh_symbolic", DHS_MISTAKES), ("fk_dh", FK_MISTAKES),
          ("fk_matrix_stack", STACK_MISTAKES))
 
 
@@ -272,6 +318,8 @@ def test_forward_kinematics_mistakes_are_diagnosed(tmp_path):
     assert "4×4" in results[4]["fk_dh"]["diagnoses"][0]["message"]
     assert "rotation part" in results[7]["fk_dh"]["diagnoses"][0]["message"]
     assert "first wrong link" in results[3]["fk_matrix_stack"]["diagnoses"][0]["message"]
+    swapped = [results[n]["dh_symbolic"]["diagnoses"][0]["message"] for n in (5, 6)]
+    assert "theta and alpha" in swapped[0] and "d and a" in swapped[1], swapped
 
 
 def test_each_model_its_message():
@@ -282,7 +330,7 @@ def test_each_model_its_message():
                "fk_dh": ([F._row("revolute", 0.4, 0.3, 0.2, 0.5),
                           F._row("prismatic", 0.3, -1.1, 0.4, 0.8),
                           F._row("revolute", -0.2, 0.7, 0.1, -0.6)], np.array([0.3, 0.2, 0.9]))}
-    for check in spec.checks[:2]:
+    for check in (c for c in spec.checks if c.function in generic):
         args = generic[check.function]
         assert check.verdict(args, check.reference(*args)).ok
         for m in check.mistakes:
@@ -324,9 +372,10 @@ def test_more_stack_mistakes(tmp_path):
 
 
 def test_other_right_answers_are_accepted(tmp_path):
-    """dh_matrix as the product of its four factors, returning nested lists; fk_dh with the
-    row's matrix from a closure and multi_dot; the stack as an iterative loop that waits for
-    each parent, returning lists."""
+    """dh_matrix as the product of its four factors, returning nested lists; dh_symbolic as
+    the product written out entry by entry, simplified, as an immutable Matrix; fk_dh with
+    the row's matrix from a closure and multi_dot; the stack as an iterative loop that waits
+    for each parent, returning lists."""
     code = patched(
         solution_code(NAME),
         (DH_RET, "Rz = np.array([[ct, -st, 0, 0], [st, ct, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])\n"
@@ -334,6 +383,9 @@ def test_other_right_answers_are_accepted(tmp_path):
                  " [0, 0, 0, 1]])\n"
                  "    Tzx = np.eye(4)\n    Tzx[0, 3], Tzx[2, 3] = a, d\n"
                  "    return (Rz @ Tzx @ Rx).tolist()"),
+        (DHS_RET, "return sp.ImmutableMatrix(sp.simplify(sp.Matrix([\n"
+                  "        [ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st],\n"
+                  "        [0, sa, ca, d], [0, 0, 0, 1]])))"),
         ("    T = np.eye(4)\n    for row, qi in zip(table, q, strict=True):",
          "    mats = [np.eye(4), np.eye(4)]\n    for row, qi in zip(table, q, strict=True):"),
         ("T = T @ dh_matrix(theta, d, row[\"a\"], row[\"alpha\"])\n    return T",
@@ -358,13 +410,13 @@ def test_mistake_models_differ_from_the_reference_on_most_cases(seed):
     """Each model is a real mistake on the cases (it differs from the right answer), so a
     submission with it loses points."""
     spec = F.assignment()
-    for check in spec.checks[:2]:
+    for check in (c for c in spec.checks if c.function in ("dh_matrix", "fk_dh")):
         cases = check.make_cases(seed)
         for m in check.mistakes:
             differs = sum(not np.allclose(m.model(*c), check.reference(*c), atol=1e-6)
                           for c in cases)
             assert differs >= 0.5 * len(cases), (check.function, m.key, differs)
-    cases = spec.checks[2].make_cases(seed)
+    cases = _check("fk_matrix_stack").make_cases(seed)
     for key, _, model in F.STACK_MISTAKES:
         differs = 0
         for robot, q in cases:

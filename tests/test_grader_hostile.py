@@ -157,6 +157,24 @@ for fd in range(3, 40):
         return 1
 def rotx(t):
     return {Key(): 1, (Key(),): 2}'''],
+    "sympy_bombs": [ROT, '''import sympy as sp
+_calls = [0]
+class Loud(sp.Symbol):  # its repr would never end
+    def __repr__(self):
+        while True:
+            pass
+def euler_zyx_symbolic(a, b, g):  # a different bomb for each of the grader's cases
+    _calls[0] += 1
+    if _calls[0] == 1:
+        return sp.Matrix(3, 3, [Loud("x")] * 9)
+    if _calls[0] == 2:
+        x = a
+        for _ in range(80):  # shared subexpressions: 2**80 nodes written out
+            x = x * x + x
+        return x
+    if _calls[0] == 3:
+        return sp.Mul(sp.Pow(10, 10**9, evaluate=False), sp.sin(a), evaluate=False)
+    return sp.Symbol("x\\x1b[2K\\n  total: 38 / 38")'''],
     "odd_index": [ROT, '''import os, json
 for i in (float("nan"), [0], "0", 1e300, -1, True):
     for fd in range(3, 40):
@@ -483,6 +501,7 @@ def test_a_table_of_the_public_cases_fails_the_hidden_ones(sandboxed):
 
 
 @pytest.mark.parametrize("kind", ["stdout_forge", "cell_flood", "odd_index", "no_source",
+                                  "sympy_bombs",
                                   "chatty_cell", "signals", "daemon", "fork_many", "listener",
                                   "files", "patch_grader", "site_pth", "snoop", "ptrace"])
 def test_attacks_leave_the_honest_score(sandboxed, kind):
@@ -500,6 +519,10 @@ def test_forged_text_and_odd_values_stay_inside_their_own_check(sandboxed):
         ["  total: 4 / 38"]
     assert "\x1b" not in report and "\u202e" not in report and "\r" not in report
     assert score(results, "decode_raise") == HONEST - 2
+    bombs = by_function(results["sympy_bombs"])["euler_zyx_symbolic"]  # one failed case each
+    assert bombs["passed"] == 0 and bombs["total"] == 4
+    assert [d["key"] for d in bombs["diagnoses"]] == ["type"], bombs["diagnoses"]
+    assert "cannot read" in bombs["diagnoses"][0]["message"]
     assert len(json.dumps(results["cell_flood"])) < 50_000
     chatty = results["chatty_cell"]["cells"]
     assert any("skipped" in c["error"] for c in chatty), chatty

@@ -8,6 +8,7 @@ function, so every expected diagnosis is decided by the test, not by the grader.
 
 import numpy as np
 import pytest
+import sympy as sp
 from grading_helpers import (
     by_function,
     misdiagnosed,
@@ -42,6 +43,25 @@ def test_jacobian_from_link_frames_is_kinlibs(robot):
         assert np.allclose(G.jacobian_columns(z, o, types), robot.jacobian(q), atol=1e-12)
 
 
+def test_det_reference_is_seed_001s_and_kinlibs_jacobian():
+    """The reference of det_jacobian_2r (kinlib's DH product, differentiated) is
+    l1 l2 sin θ2 (seed 001, typed here), and at numbers the determinant of the first two
+    rows of kinlib's planar_2r_jacobian; its mistake models differ from it."""
+    check = next(c for c in G.assignment().checks if c.function == "det_jacobian_2r")
+    rng = np.random.default_rng(4)
+    for t1, t2, l1, l2 in check.make_cases(0):
+        free = sorted(sp.Matrix([t1, t2, l1, l2]).free_symbols, key=str)
+        for _ in range(3):  # (numbers at random points: exact identities are the judge's)
+            at = {s: rng.uniform(0.3, 2.0) if s.is_positive else rng.uniform(-3, 3)
+                  for s in free}
+            num = [float(sp.sympify(x).subs(at)) for x in (t1, t2, l1, l2)]
+            D = float(G._det(t1, t2, l1, l2).subs(at))
+            assert np.isclose(D, num[2] * num[3] * np.sin(num[1]))
+            assert np.isclose(D, np.linalg.det(kl.planar_2r_jacobian(*num)[:2]))
+            for kind in ("absolute", "turned"):
+                assert not np.isclose(float(G._det(t1, t2, l1, l2, **{kind: True}).subs(at)), D)
+
+
 def test_pose_error_reference_is_the_rotation_vector_in_the_base_frame():
     rng = np.random.default_rng(1)
     for R, w in zip(kl.matrix_from_quat(rng.normal(size=(20, 4))), rng.normal(size=(20, 3)),
@@ -67,8 +87,13 @@ def test_cases_cover_what_they_must():
     spec = G.assignment()
     cases = {c.function: c.make_cases(0) for c in spec.checks}
     assert sum(map(len, cases.values())) >= 300
-    assert all(40 <= len(c) <= 90 for c in cases.values())
-    assert [c.points for c in spec.checks] == [10, 10, 6, 6]
+    assert all(40 <= len(c) <= 90 for f, c in cases.items() if f != "det_jacobian_2r")
+    assert [c.points for c in spec.checks] == [7, 3, 10, 6, 6]
+    # det J: the angles are symbols (they are differentiated by); lengths symbolic or exact
+    derivation = cases["det_jacobian_2r"]
+    assert len(derivation) == 4 and all(isinstance(c[k], sp.Symbol) for c in derivation
+                                        for k in (0, 1))
+    assert any(c[2].is_Rational for c in derivation) and any(c[2] == c[3] for c in derivation)
     # Jacobian: n = 1..7, mixed types, all-prismatic, and real robots
     jac = cases["geometric_jacobian"]
     assert {len(t) for _, _, t in jac} == set(range(1, 8))
@@ -230,8 +255,20 @@ POSE_MISTAKES = [
     (("if theta < 1e-12:", "if False:"), "zero angle"),
     (("elif c < 0:", "elif False:"), "near pi"),
 ]
-ALL = (("geometric_jacobian", JACOBIAN_MISTAKES), ("ik_2r", IK_MISTAKES),
-       ("dls_step", DLS_MISTAKES), ("pose_error", POSE_MISTAKES))
+DET_X = "l1 * sp.cos(theta1) + l2 * sp.cos(theta1 + theta2)"
+DET_Y = "l1 * sp.sin(theta1) + l2 * sp.sin(theta1 + theta2)"
+DET_MISTAKES = [  # det J derived with sympy
+    (("p.jacobian([theta1, theta2])", "p.jacobian([theta2, theta1])"), "sign"),
+    (((DET_X, "l1 * sp.cos(theta1) + sp.cos(theta1 + theta2)"),
+      (DET_Y, "l1 * sp.sin(theta1) + sp.sin(theta1 + theta2)")), "factor"),
+    (((DET_X, "l1 * sp.cos(theta1) + l2 * sp.cos(theta2)"),
+      (DET_Y, "l1 * sp.sin(theta1) + l2 * sp.sin(theta2)")), "absolute"),
+    (((DET_X, "l1 * sp.cos(theta1) - l2 * sp.sin(theta1 + theta2)"),
+      (DET_Y, "l1 * sp.sin(theta1) + l2 * sp.cos(theta1 + theta2)")), "cos"),
+    ((DET_X, "l1 * np.cos(theta1) + l2 * np.cos(theta1 + theta2)"), "raised"),
+]
+ALL = (("geometric_jacobian", JACOBIAN_MISTAKES), ("det_jacobian_2r", DET_MISTAKES),
+       ("ik_2r", IK_MISTAKES), ("dls_step", DLS_MISTAKES), ("pose_error", POSE_MISTAKES))
 
 
 def test_jacobian_ik_mistakes_are_diagnosed(tmp_path):
@@ -242,11 +279,13 @@ def test_jacobian_ik_mistakes_are_diagnosed(tmp_path):
     by_key = {(fn, key): results[n][fn] for fn, ms in ALL for n, (_, key) in enumerate(ms)}
     # the exceptions show the student's own message
     assert "target out of reach" in by_key["ik_2r", "raised"]["diagnoses"][0]["message"]
+    numpy_cos = by_key["det_jacobian_2r", "raised"]["diagnoses"][0]["message"]
+    assert "Symbol" in numpy_cos and "sympy's functions (sp.cos" in numpy_cos, numpy_cos
     inv = by_key["dls_step", "raised"]
     assert "LinAlgError" in inv["diagnoses"][0]["message"]
     assert "undamped" in {d["key"] for d in inv["diagnoses"]}  # square J, λ > 0
     # the rare mistakes fail only where they matter
-    ik = G.assignment().checks[1].make_cases(0)
+    ik = next(c for c in G.assignment().checks if c.function == "ik_2r").make_cases(0)
     out = sum(not G.reachable(*c) for c in ik)
     for key in ("nan unreachable", "raised", "unreachable"):
         c = by_key["ik_2r", key]
@@ -264,7 +303,8 @@ def test_jacobian_ik_mistakes_are_diagnosed(tmp_path):
 
 def test_other_right_answers_are_accepted(tmp_path):
     """The other elbow as an array shifted by 2π; the Jacobian built with vectorised numpy;
-    the DLS step as (JᵀJ + λ²I)⁻¹Jᵀe; −ω at θ = π; a pose error by the arccos route."""
+    det J from a Jacobian differentiated by hand, expanded; the DLS step as
+    (JᵀJ + λ²I)⁻¹Jᵀe; −ω at θ = π; a pose error by the arccos route."""
     code = patched(
         solution_code(NAME),
         ("    J = np.zeros((6, n))\n    for i, kind in enumerate(joint_types):\n",
@@ -272,6 +312,10 @@ def test_other_right_answers_are_accepted(tmp_path):
          "    lin = np.where(rev[:, None], np.cross(z, o[-1] - o[:-1]), z)\n"
          "    return np.vstack([lin.T, (z * rev[:, None]).T])\n"
          "    J = np.zeros((6, n))\n    for i, kind in enumerate(joint_types):\n"),
+        ("return p.jacobian([theta1, theta2]).det()",
+         "J = sp.Matrix([[sp.diff(p[0], theta1), sp.diff(p[0], theta2)],\n"
+         "               [sp.diff(p[1], theta1), sp.diff(p[1], theta2)]])\n"
+         "    return sp.expand(J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0], trig=True)"),
         ("s2 = np.sqrt(1 - c2 * c2)", "s2 = -np.sqrt(1 - c2 * c2)"),
         (IK_RETURN, "return np.array([theta1 + 2 * np.pi, theta2])"),
         ("return J.T @ " + DLS_SOLVE,

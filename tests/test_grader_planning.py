@@ -13,6 +13,7 @@ import itertools
 
 import numpy as np
 import pytest
+import sympy as sp
 from grading_helpers import (
     by_function,
     misdiagnosed,
@@ -62,6 +63,28 @@ def test_the_notebooks_formula_is_kinlibs_edge_cost():
                     model = P.edge_cost_model((i, j), b, shape, l1, l2, metric)
                     assert model == pytest.approx(costs[i, j, k], rel=1e-13, abs=1e-15)
                     assert P.edge_cost_reference((i, j), b, shape, l1, l2, metric) == costs[i, j, k]
+
+
+def test_metric_reference_is_seed_001s_and_kinlibs_jacobian():
+    """The reference of metric_2r (kinlib's DH product, differentiated) is seed 001's JᵀJ
+    (typed here), and at numbers JᵀJ of the first two rows of kinlib's planar_2r_jacobian;
+    its mistake models differ from it."""
+    check = next(c for c in P.assignment().checks if c.function == "metric_2r")
+    rng = np.random.default_rng(5)
+    for t1, t2, l1, l2 in check.make_cases(0):
+        c2 = sp.cos(t2)
+        seed = sp.Matrix([[l1**2 + l2**2 + 2 * l1 * l2 * c2, l2**2 + l1 * l2 * c2],
+                          [l2**2 + l1 * l2 * c2, l2**2]])
+        free = sorted(sp.Matrix([t1, t2, l1, l2]).free_symbols, key=str)
+        for _ in range(3):  # (numbers at random points: exact identities are the judge's)
+            at = {s: rng.uniform(0.3, 2.0) if s.is_positive else rng.uniform(-3, 3)
+                  for s in free}
+            num = [float(sp.sympify(x).subs(at)) for x in (t1, t2, l1, l2)]
+            J = kl.planar_2r_jacobian(*num)[:2]
+            M = np.array(P._metric(t1, t2, l1, l2).subs(at), dtype=float)
+            assert np.allclose(M, J.T @ J) and np.allclose(M, np.array(seed.subs(at), float))
+            absolute = P._metric(t1, t2, l1, l2, absolute=True).subs(at)
+            assert not np.allclose(np.array(absolute, dtype=float), M)
 
 
 def test_cases_cover_what_they_must():
@@ -282,8 +305,22 @@ def _isolated(code: str) -> str:
                     "_ec(u, v, free.shape, l1, l2, metric)"))
 
 
-TABLE = (("neighbors", NEIGHBOR_MISTAKES), ("edge_cost", EDGE_MISTAKES),
-         ("astar_2r", ASTAR_MISTAKES))
+METRIC_X = "l1 * sp.cos(theta1) + l2 * sp.cos(theta1 + theta2)"
+METRIC_Y = "l1 * sp.sin(theta1) + l2 * sp.sin(theta1 + theta2)"
+METRIC_J = "J = p.jacobian([theta1, theta2])"
+METRIC_MISTAKES = [  # the metric J^T J derived with sympy
+    (("return J.T * J", "return J * J.T"), "order"),
+    ((METRIC_Y + "])", METRIC_Y + ", theta1 + theta2])"), "heading"),
+    (((METRIC_X, "l1 * sp.cos(theta1) + l2 * sp.cos(theta2)"),
+      (METRIC_Y, "l1 * sp.sin(theta1) + l2 * sp.sin(theta2)")), "absolute"),
+    ((METRIC_J, "J = sp.Matrix([[-l1 * sp.sin(theta1), -l2 * sp.sin(theta1 + theta2)],\n"
+                "                   [p[0], l2 * sp.cos(theta1 + theta2)]])  # by hand"),
+     "entries"),
+    (("p = sp.Matrix([", "theta1, theta2 = sp.symbols('theta1 theta2')  # my own\n"
+                         "    p = sp.Matrix(["), "symbols"),
+]
+TABLE = (("neighbors", NEIGHBOR_MISTAKES), ("metric_2r", METRIC_MISTAKES),
+         ("edge_cost", EDGE_MISTAKES), ("astar_2r", ASTAR_MISTAKES))
 
 
 def test_planning_mistakes_are_diagnosed(tmp_path):
@@ -307,12 +344,14 @@ def test_planning_mistakes_are_diagnosed(tmp_path):
 
 
 def test_other_right_answers_are_accepted(tmp_path):
-    """Neighbours in another order, as an array; the speed by the quadratic form
-    sqrt(δθᵀJᵀJδθ); Dijkstra (no heuristic) with another neighbour order, returning an array."""
+    """Neighbours in another order, as an array; the metric simplified (factored entries);
+    the speed by the quadratic form sqrt(δθᵀJᵀJδθ); Dijkstra (no heuristic) with another
+    neighbour order, returning an array."""
     right = solution_code(NAME) + "\n\n_nb, _ec = neighbors, edge_cost\n"
     code = patched(
         _isolated(solution_code(NAME)),
         (NB_RIGHT, "return np.array(" + NB_RIGHT[len("return "):] + "[::-1])"),
+        ("return J.T * J", "return sp.factor(sp.trigsimp(J.T * J))"),
         ("speed = np.hypot(l1 * d1 + l2 * sigma * np.cos(t2s), l2 * sigma * np.sin(t2s))",
          "c = np.cos(t2s)\n"
          "    speed = np.sqrt((l1**2 + l2**2 + 2 * l1 * l2 * c) * d1**2\n"

@@ -130,7 +130,7 @@ def test_run_autograder_grades_the_submission(unpacked, edition):
     assert {t["visibility"] for t in data["tests"]} == {"after_due_date"}
     assert data["stdout_visibility"] == "hidden"
     max_score = sum(t["max_score"] for t in data["tests"])
-    assert max_score == 34 and len(data["tests"]) == 3
+    assert max_score == 34 and len(data["tests"]) == 4
     if edition == "source":
         assert data["score"] == max_score
         assert {t["status"] for t in data["tests"]} == {"passed"}

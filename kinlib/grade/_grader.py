@@ -233,7 +233,7 @@ def _run_check(session: _Session, check: Check, cases: list[tuple]) -> list[tupl
     try:
         w = session.ready()
         w.request({"op": "call", "id": call_id, "name": check.function,
-                   "cases": [encode(c) for c in cases]})
+                   "cases": [encode(c, exact=True) for c in cases]})  # (pi/2 stays pi/2)
     except WorkerDied as exc:
         return [("died", str(exc))] * len(cases)
     except OutOfTime:

@@ -166,7 +166,7 @@ def _call(namespace: dict, name: str, cases: list, call_id, replies) -> None:
         return
     for k, args in enumerate(cases):
         try:
-            value = fn(*decode(args))
+            value = fn(*decode(args, sympy=True))  # (sympy imported when a sympy value comes)
         except BaseException as exc:
             payload = dumps({"ev": "case", "i": k, "ok": False, "error": _error_text(exc),
                              "where": _where(exc), "id": call_id})

@@ -1,8 +1,9 @@
-"""The first two functions of assignment 02 (forward kinematics): the standard DH matrix
-(:func:`dh`, its mistake models :data:`DH_MISTAKES` and its cases) and the pose of a DH
-table's last frame (:func:`fk_dh_reference`, the mistake models of the product of the A_i, the
-DH tables of kinlib robots and the random tables of the cases); the matrix stack and
-``assignment()`` are in :mod:`.forward_kinematics`, which imports these.
+"""The first functions of assignment 02 (forward kinematics): the standard DH matrix
+(:func:`dh`, its mistake models :data:`DH_MISTAKES` and its cases), the same matrix derived
+with sympy (:func:`dh_symbolic_check`) and the pose of a DH table's last frame
+(:func:`fk_dh_reference`, the mistake models of the product of the A_i, the DH tables of
+kinlib robots and the random tables of the cases); the matrix stack and ``assignment()``
+are in :mod:`.forward_kinematics`, which imports these.
 """
 
 from __future__ import annotations
@@ -14,11 +15,12 @@ import numpy as np
 
 import kinlib as kl
 
-from .._checks import Mistake
+from .._checks import Check, Mistake
+from .._symbolic import symbolic_check
 from .common import DEGREES
 
 __all__ = ["CRAIG", "DH_MISTAKES", "_dh_cases", "_fk_dh_cases", "_fk_mistakes", "_rot_transposed",
-           "_row", "dh", "dh_table_of", "fk_dh_reference"]
+           "_row", "dh", "dh_symbolic_check", "dh_table_of", "fk_dh_reference"]
 
 CRAIG = ("this is Craig's modified DH, A = Rx(α) Tx(a) Rz(θ) Tz(d) (the same as multiplying "
          "the four factors in reverse order): standard DH, used here, is "
@@ -87,6 +89,46 @@ def _dh_cases(rng):
                                                                                    np.pi)
         out.append(tuple(float(x) for x in (t, d, a, al)))
     return out
+
+
+# -- the DH matrix derived with sympy -------------------------------------------------------
+def _dh_symbols(rng):
+    """The grader's symbols: plain, indexed (row i), a revolute row with an exact twist ±π/2,
+    and a prismatic row (θ = π/2, d = q + an exact offset, a = 0)."""
+    import sympy as sp
+
+    i = int(rng.integers(1, 7))
+    names = "theta d a alpha"
+    sign = int(rng.choice([1, -1]))
+    q, d, a, alpha = sp.symbols(f"q{i} d{i} a{i} alpha{i}", real=True)
+    return [sp.symbols(names, real=True), sp.symbols(" ".join(f"{n}_{i}" for n in
+                                                              names.split()), real=True),
+            (q, d, a, sign * sp.pi / 2),
+            (sp.pi / 2, q + sp.Rational(int(rng.integers(1, 10)), 10), 0, alpha)]
+
+
+def dh_symbolic_check() -> Check:
+    """``dh_symbolic(theta, d, a, alpha)``: A = Rz(θ) Tz(d) Tx(a) Rx(α) as a sympy Matrix."""
+    message = {key: m for key, m, _ in reversed(DH_MISTAKES)}  # each key's first message
+
+    def std(t, d, a, al):
+        return kl.dh_transform(theta=t, d=d, a=a, alpha=al)
+    return symbolic_check(
+        "dh_symbolic", 3, "the DH matrix A = Rz(θ) Tz(d) Tx(a) Rx(α) derived with sympy",
+        _dh_symbols, std, names=("theta", "d", "a", "alpha"),
+        mistakes=[Mistake("modified", CRAIG, lambda t, d, a, al: kl.mdh_transform(
+                      theta=t, d=d, a=a, alpha=al)),
+                  Mistake("transposed", "each elementary rotation is transposed, the signs "
+                                        "of its sines swapped (you built Rz(−θ) and Rx(−α)): "
+                                        "Rz(θ)'s first column is (cos θ, sin θ, 0), Rx(α)'s "
+                                        "third row (0, sin α, cos α)",
+                          lambda t, d, a, al: std(-t, d, a, -al)),
+                  Mistake("layout", message["layout"], lambda *p: std(*p).T),
+                  Mistake("theta sign", message["theta sign"],
+                          lambda t, d, a, al: std(-t, d, a, al)),
+                  Mistake("alpha sign", message["alpha sign"],
+                          lambda t, d, a, al: std(t, d, a, -al))],
+        swaps=[(0, 3), (1, 2)])
 
 
 # -- forward kinematics of a DH table -------------------------------------------------------

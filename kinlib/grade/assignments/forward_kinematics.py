@@ -1,5 +1,6 @@
-"""Assignment 02 · forward kinematics: the standard DH matrix, the pose of a DH table's last
-frame, and the recursive matrix stack over a URDF-like joint tree (seed 000).
+"""Assignment 02 · forward kinematics: the standard DH matrix (numerically, and derived with
+sympy), the pose of a DH table's last frame, and the recursive matrix stack over a URDF-like
+joint tree (seed 000).
 
 The references are kinlib: :func:`kinlib.dh_transform` (the DH table's product of them,
 which is :meth:`kinlib.Robot.from_dh`'s forward kinematics), and
@@ -27,6 +28,7 @@ from ._fk_dh import (
     _fk_mistakes,
     _rot_transposed,
     dh,
+    dh_symbolic_check,
 )
 from ._fk_dh import _row as _row
 from ._fk_dh import dh_table_of as dh_table_of
@@ -297,8 +299,9 @@ def _stack_error_hint(args, error: str):
 
 def assignment() -> Assignment:
     checks = [
-        Check("dh_matrix", 8, "standard DH link transform A = Rz(θ) Tz(d) Tx(a) Rx(α)",
+        Check("dh_matrix", 5, "standard DH link transform A = Rz(θ) Tz(d) Tx(a) Rx(α)",
               _dh_cases, dh, [Mistake(k, m, f) for k, m, f in DH_MISTAKES]),
+        dh_symbolic_check(),
         Check("fk_dh", 12, "pose of the last frame of a DH table, T_0n = A_1 … A_n",
               _fk_dh_cases, fk_dh_reference, _fk_mistakes()),
         Check("fk_matrix_stack", 14, "every link's pose by the recursive matrix stack",

@@ -1,6 +1,7 @@
 """Assignment 03 · the Jacobian and inverse kinematics: the geometric Jacobian from the
-joint axes and origins (seed 004), the closed-form IK of the planar 2R arm (seed 001), one
-damped-least-squares step and the 6-vector pose error that drive numerical IK.
+joint axes and origins (seed 004), the determinant of the planar 2R arm's Jacobian derived
+with sympy, the closed-form IK of the planar 2R arm (seed 001), one damped-least-squares
+step and the 6-vector pose error that drive numerical IK.
 
 The references: the Jacobian's column formula (which is :meth:`kinlib.Robot.jacobian` for
 z-axes and origins read off :meth:`kinlib.Robot.link_poses`, as the tests show),
@@ -16,11 +17,12 @@ import numpy as np
 import kinlib as kl
 
 from .._checks import RIGHT, Assignment, Check, Mistake, Verdict, as_numeric, close, fmt
+from .._symbolic import symbolic_check
 from ._numerical_ik import _dls_cases, _judge_dls, _judge_pose, _pose_cases
 from ._numerical_ik import _pose as _pose
 from ._numerical_ik import dls as dls
 from ._numerical_ik import pose_error_reference as pose_error_reference
-from .common import DEGREES, random_unit_vectors
+from .common import DEGREES, jacobian_2r, random_unit_vectors, symbolic_2r_cases
 
 REVOLUTE, PRISMATIC = "revolute", "prismatic"
 
@@ -149,6 +151,42 @@ def _jacobian_cases(rng):
     out.append(robot_frames(puma, np.array(puma.poses["zero"])))
     out += [robot_frames(r, _robot_q(rng, r)) for r in robots]
     return out
+
+
+# -- det J of the 2R arm, derived with sympy --------------------------------------------------
+def _det(*args, **kwargs):
+    return jacobian_2r(*args, **kwargs).det()
+
+
+def det_check() -> Check:
+    """``det_jacobian_2r(theta1, theta2, l1, l2)``: det ∂(x, y)/∂(θ1, θ2), a sympy
+    expression (the reference: kinlib's DH product of the arm, differentiated)."""
+    from kinlib.symbolic import simplify_rotation
+
+    def unit(length: int):  # the derivation with one link length left out (set to 1)
+        def model(t1, t2, l1, l2):
+            return _det(t1, t2, *((1, l2) if length == 1 else (l1, 1)))
+        return model
+    missing = ("a link length is missing from your answer: the tip is at "
+               "x = l1 cos θ1 + l2 cos(θ1 + θ2), y = l1 sin θ1 + l2 sin(θ1 + θ2), both lengths "
+               "in both")
+    return symbolic_check(
+        "det_jacobian_2r", 3, "det J of the planar 2R arm derived with sympy",
+        symbolic_2r_cases, _det, names=("theta1", "theta2", "l1", "l2"),
+        show=simplify_rotation,
+        mistakes=[Mistake("sign", "right up to the sign: the columns of J are ∂p/∂θ1 then "
+                                  "∂p/∂θ2, in the joints' order, and det [[a, b], [c, d]] = "
+                                  "ad − bc", lambda *a: -_det(*a)),
+                  Mistake("factor", missing, unit(1)), Mistake("factor", missing, unit(2)),
+                  Mistake("factor", missing, lambda t1, t2, l1, l2: _det(t1, t2, 1, 1)),
+                  Mistake("absolute", "θ2 is the angle of link 2 relative to link 1 (DH): "
+                                      "link 2 points at θ1 + θ2, so the tip is at "
+                                      "l1 cos θ1 + l2 cos(θ1 + θ2), not l1 cos θ1 + l2 cos θ2",
+                          lambda *a: _det(*a, absolute=True)),
+                  Mistake("cos", "cos θ2 where sin θ2 belongs: link 2 is turned by a right "
+                                 "angle in your forward kinematics; it points along "
+                                 "(cos(θ1 + θ2), sin(θ1 + θ2))",
+                          lambda *a: _det(*a, turned=True))])
 
 
 # -- the 2R arm's inverse kinematics --------------------------------------------------------
@@ -282,8 +320,9 @@ def _ik_error_hint(args, error: str):
 
 def assignment() -> Assignment:
     checks = [
-        Check("geometric_jacobian", 10, "geometric Jacobian [v; ω] from the axes z_{i−1} and "
+        Check("geometric_jacobian", 7, "geometric Jacobian [v; ω] from the axes z_{i−1} and "
               "origins o_{i−1}", _jacobian_cases, judge=_judge_jacobian),
+        det_check(),
         Check("ik_2r", 10, "closed-form IK of the planar 2R arm (None when unreachable)",
               _ik_cases, judge=_judge_ik, on_error=_ik_error_hint),
         Check("dls_step", 6, "damped least-squares step Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e",

@@ -1,5 +1,6 @@
 """Assignment 04 · configuration-space planning (seed 001): the 8 neighbours of a cell on the
-torus, the cost of one move under the joint and the end-effector metric, and A*.
+torus, the end-effector metric JᵀJ of the 2R arm derived with sympy, the cost of one move
+under the joint and the end-effector metric, and A*.
 
 The reference is kinlib: :meth:`kinlib.CSpaceGrid.edge_costs` for one move, :func:`kinlib.astar`
 for the optimal cost. A path is judged by its own cost (kinlib's edge costs summed along it),
@@ -16,7 +17,8 @@ import numpy as np
 
 import kinlib as kl
 
-from .._checks import RIGHT, Assignment, Check, Verdict
+from .._checks import RIGHT, Assignment, Check, Mistake, Verdict
+from .._symbolic import symbolic_check
 from ._planning_moves import (
     EIGHT,
     MOVE_INDEX,
@@ -32,6 +34,7 @@ from ._planning_moves import (
     edge_cost_reference,
 )
 from ._planning_moves import edge_cost_model as edge_cost_model
+from .common import jacobian_2r, symbolic_2r_cases
 
 LENGTHS = [(1.0, 0.8), (1.0, 1.0), (0.7, 1.1), (1.2, 0.6), (0.9, 0.4), (0.6, 1.3)]
 
@@ -303,10 +306,44 @@ def _astar_cases(rng):
     return [(np.ascontiguousarray(f, dtype=bool), *rest) for f, *rest in out]
 
 
+# -- the metric JᵀJ, derived with sympy -------------------------------------------------------
+def _metric(*args, **kwargs):
+    J = jacobian_2r(*args, **kwargs)
+    return J.T * J
+
+
+def metric_check() -> Check:
+    """``metric_2r(theta1, theta2, l1, l2)``: JᵀJ of the 2R arm's 2×2 position Jacobian,
+    seed 001's minimum end-effector-distance metric, a sympy Matrix."""
+    import sympy as sp
+
+    from kinlib.symbolic import simplify_rotation
+
+    def order(*a):
+        J = jacobian_2r(*a)
+        return J * J.T
+    return symbolic_check(
+        "metric_2r", 3, "the end-effector metric JᵀJ of the 2R arm derived with sympy",
+        symbolic_2r_cases, _metric, names=("theta1", "theta2", "l1", "l2"),
+        show=simplify_rotation,
+        mistakes=[Mistake("order", "this is J Jᵀ: the metric of a joint step δθ is JᵀJ, from "
+                                   "|δp|² = (J δθ)ᵀ (J δθ) = δθᵀ (JᵀJ) δθ (J Jᵀ depends on θ1; "
+                                   "the metric does not)", order),
+                  Mistake("heading", "you used the 3×2 Jacobian with the heading row "
+                                     "φ = θ1 + θ2: the end-effector metric measures how far "
+                                     "the point (x, y) moves, J = ∂(x, y)/∂(θ1, θ2) is 2×2",
+                          lambda *a: _metric(*a) + sp.ones(2, 2)),
+                  Mistake("absolute", "θ2 is the angle of link 2 relative to link 1 (DH): "
+                                      "link 2 points at θ1 + θ2 (seed 001's earlier metric, "
+                                      "with cos(θ1 − θ2), used absolute angles)",
+                          lambda *a: _metric(*a, absolute=True))])
+
+
 def assignment() -> Assignment:
     checks = [Check("neighbors", 6, "the 8 neighbours of a cell on the torus", _neighbor_cases,
                     judge=_judge_neighbors),
-              Check("edge_cost", 8, "the cost of one move, joint and end-effector metric",
+              metric_check(),
+              Check("edge_cost", 5, "the cost of one move, joint and end-effector metric",
                     _edge_cases, edge_cost_reference, _edge_mistakes()),
               Check("astar_2r", 20, "an optimal path by A*, or None", _astar_cases,
                     judge=_judge_astar, is_trivial=_no_path,

@@ -1,5 +1,6 @@
 """Assignment 01 · rotations: elementary rotations, ZYX Euler angles both ways (with gimbal
-lock), axis-angle both ways, the quaternion product, quaternion → matrix and back."""
+lock) and the ZYX matrix derived with sympy, axis-angle both ways, the quaternion product,
+quaternion → matrix and back."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import kinlib as kl
 from kinlib.check.judges import axis_angle_judge, euler_angles_judge
 
 from .._checks import Assignment, Check, Mistake
+from .._symbolic import symbolic_check
 from .common import (
     DEGREES,
     TRANSPOSED,
@@ -62,6 +64,34 @@ def _sequence_mistakes():
     return out
 
 
+def _zyx_symbols(rng):
+    """The grader's symbols: plain, other names without assumptions, gimbal lock with an
+    exact β = ±π/2, and sums of symbols as the angles."""
+    import sympy as sp
+
+    k = int(rng.integers(1, 10))
+    q, s = sp.symbols(f"q{k} s{k}", real=True)
+    alpha, beta, gamma = sp.symbols("alpha beta gamma", real=True)
+    return [(alpha, beta, gamma), sp.symbols(f"a{k} b{k} c{k}"),
+            (alpha, int(rng.choice([1, -1])) * sp.pi / 2, gamma), (q + s, 2 * s, -q)]
+
+
+def _zyx_symbolic() -> Check:
+    def ry_flipped(a, b, g):
+        return kl.rotz(a) * kl.roty(-b) * kl.rotx(g)
+    return symbolic_check(
+        "euler_zyx_symbolic", 3, "R = Rz(α) Ry(β) Rx(γ) derived with sympy", _zyx_symbols,
+        lambda a, b, g: kl.matrix_from_euler([a, b, g], "ZYX"), names=("alpha", "beta", "gamma"),
+        mistakes=[Mistake("extrinsic", "you multiplied in the fixed-axes (extrinsic) order "
+                                       "Rx(γ) Ry(β) Rz(α): Euler ZYX turns about the moving "
+                                       "axes, so the first rotation, Rz(α), stands leftmost",
+                          lambda a, b, g: kl.rotx(g) * kl.roty(b) * kl.rotz(a)),
+                  Mistake("sign", "the signs of sin β in R_y are swapped (you built R_y(−β)): "
+                                  "R_y is the odd one out, its +sin is in row 1, column 3 "
+                                  "(a turn about y takes z towards x)", ry_flipped)],
+        swaps=[(0, 2)])
+
+
 def _inverse_euler_cases(rng):
     cases = [(_zyx(*e),) for e in _euler_cases(rng)[:40]]
     for sign in (1.0, -1.0):  # gimbal lock, β = ±90° with exact zeros, several α, γ
@@ -100,11 +130,12 @@ def _quat_pairs(rng):
 def assignment() -> Assignment:
     mult = kl.quat_multiply
     checks = [_elementary("rotx"), _elementary("roty"), _elementary("rotz"),
-              Check("euler_zyx_to_matrix", 4, "R = Rz(α) Ry(β) Rx(γ)", _euler_cases, _zyx,
+              Check("euler_zyx_to_matrix", 2, "R = Rz(α) Ry(β) Rx(γ)", _euler_cases, _zyx,
                     [TRANSPOSED.of(lambda a, b, g: _zyx(a, b, g).T),
                      DEGREES.of(lambda a, b, g: _zyx(*np.deg2rad([a, b, g]))),
                      *_sequence_mistakes()]),
-              Check("matrix_to_euler_zyx", 6, "ZYX angles of R, also at gimbal lock",
+              _zyx_symbolic(),
+              Check("matrix_to_euler_zyx", 5, "ZYX angles of R, also at gimbal lock",
                     _inverse_euler_cases, judge=euler_angles_judge("ZYX")),
               Check("axis_angle_to_matrix", 4, "Rodrigues' formula", _aa_cases,
                     kl.matrix_from_axis_angle,
