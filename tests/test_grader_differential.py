@@ -1,6 +1,7 @@
 """Assignment 06 (differential kinematics): the grader's references agree with kinlib and
 with independent routes (scipy's expm, Modern Robotics in its [ω; v] order, finite
-differences, scipy's bounded least squares), its cases cover what they must (exact and near
+differences, scipy's bounded least squares; the 3R arm's symbolic J_s against Modern
+Robotics and finite differences), its cases cover what they must (exact and near
 singularities, targets reachable only outside the limits), each classic mistake gets its
 diagnosis from a real wrong submission, and right alternatives are accepted.
 
@@ -12,6 +13,7 @@ that each function carries exactly its own mistake. All submissions are graded i
 import modern_robotics as mr
 import numpy as np
 import pytest
+import sympy as sp
 from grading_helpers import (
     by_function,
     misdiagnosed,
@@ -28,6 +30,7 @@ import kinlib as kl
 from kinlib.grade import grade_many
 from kinlib.grade.assignments import _limited_ik as L
 from kinlib.grade.assignments import _singular as G
+from kinlib.grade.assignments import _sj_symbolic as Q
 from kinlib.grade.assignments import differential as D
 
 NAME = "06_differential_kinematics"
@@ -72,6 +75,42 @@ def test_space_jacobian_is_the_derivative_of_the_pose():
             dq = np.eye(len(q))[i] * h
             X = (kl.poe_fk(M, S, q + dq) - kl.poe_fk(M, S, q - dq)) / (2 * h) @ Tinv
             assert np.allclose(J[:, i], [*X[:3, 3], X[2, 1], X[0, 2], X[1, 0]], atol=1e-7)
+
+
+def test_symbolic_3r_jacobian_is_modern_robotics_and_the_derivative_of_the_pose():
+    """The reference of space_jacobian_3r at numbers: Modern Robotics' JacobianSpace, kinlib's
+    space_jacobian, central differences of the PoE pose, and column 3 typed here; its
+    body and geometric mistake models are kinlib's body_jacobian and the geometric
+    Jacobian of the DH robot; the other models differ from it."""
+    t, l = sp.symbols("theta1:4", real=True), sp.symbols("l1:4", positive=True)
+    J = Q.planar_3r_jacobian(*t, *l)
+    assert J.free_symbols <= {*t[:2], *l[:2]}
+    s12, c12 = sp.sin(t[0] + t[1]), sp.cos(t[0] + t[1])
+    typed = [l[0] * sp.sin(t[0]) + l[1] * s12, -l[0] * sp.cos(t[0]) - l[1] * c12, 0, 0, 0, 1]
+    assert sp.simplify(J[:, 2] - sp.Matrix(typed)) == sp.zeros(6, 1)
+    rng, h = np.random.default_rng(9), 1e-6
+    models = [lambda *a: Q.planar_3r_jacobian(*a, moment=1),
+              lambda *a: Q.planar_3r_jacobian(*a, carry=Q._mr_adjoint),
+              lambda *a: Q.planar_3r_jacobian(*a, carry=Q._swapped_adjoint)]
+    for _ in range(4):
+        q, lengths = rng.uniform(-np.pi, np.pi, 3), rng.uniform(0.3, 1.5, 3)
+        at = dict(zip([*t, *l], [*q, *lengths], strict=True))
+        num = lambda M, at=at: np.array(M.subs(at), dtype=float)  # noqa: E731
+        S = np.array([[0, -x, 0, 0, 0, 1] for x in (0, lengths[0], lengths[:2].sum())]).T
+        M = kl.transform(p=[lengths.sum(), 0, 0])
+        assert np.allclose(num(J), _mr(mr.JacobianSpace(_mr(S), q)), atol=1e-12)
+        assert np.allclose(num(J), kl.space_jacobian(S, q), atol=1e-12)
+        Tinv = kl.transform_inverse(kl.poe_fk(M, S, q))
+        for i in range(3):
+            dq = np.eye(3)[i] * h
+            X = (kl.poe_fk(M, S, q + dq) - kl.poe_fk(M, S, q - dq)) / (2 * h) @ Tinv
+            assert np.allclose(num(J)[:, i], [*X[:3, 3], X[2, 1], X[0, 2], X[1, 0]], atol=1e-7)
+        B = kl.adjoint(kl.transform_inverse(M)) @ S
+        assert np.allclose(num(Q.planar_3r_body_jacobian(*t, *l)), kl.body_jacobian(B, q))
+        robot = kl.Robot.from_dh([{"a": float(x), "alpha": 0.0} for x in lengths])
+        assert np.allclose(num(Q.planar_3r_geometric_jacobian(*t, *l)), robot.jacobian(q))
+        for model in models:
+            assert not np.allclose(num(model(*t, *l)), num(J))
 
 
 def test_robot_chains_are_the_robots():
@@ -197,8 +236,13 @@ def test_the_closed_form_solutions_of_the_planar_chains():
 def test_case_counts_and_points(cases):
     spec = D.assignment()
     assert sum(map(len, cases.values())) >= 300
-    assert [c.points for c in spec.checks] == [6, 6, 8, 4, 6, 10]
-    assert all(35 <= len(c) <= 80 for c in cases.values())
+    assert [c.points for c in spec.checks] == [6, 6, 8, 4, 4, 6, 10]
+    assert all(35 <= len(c) <= 80 for f, c in cases.items() if f != "space_jacobian_3r")
+    # the derivation: symbolic angles; lengths symbolic, exact, or one symbol for all links
+    derivation = cases["space_jacobian_3r"]
+    assert len(derivation) == 4 and all(isinstance(x, sp.Symbol) for c in derivation
+                                        for x in c[:3])
+    assert any(c[3].is_Rational for c in derivation) and any(c[3] == c[5] for c in derivation)
     angles = [np.linalg.norm(xi[3:]) for (xi,) in cases["exp_twist"]]
     assert sum(a == 0 for a in angles) >= 5 and sum(0 < a < 1e-3 for a in angles) >= 8
     assert sum(abs(a - np.pi) < 1e-9 for a in angles) >= 3 and max(angles) > 6 * np.pi
@@ -275,6 +319,31 @@ SJ_MISTAKES = [
     (("Ad[:3, 3:] = skew(p) @ R", "Ad[:3, 3:] = R @ skew(p)"), "adjoint"),
     (("    return J\n", "    return np.vstack([J[3:], J[:3]])\n"), "rows"),
 ]
+SJ3_AXES = ("axes = [sp.Matrix.vstack(-z.cross(sp.Matrix([x, 0, 0])), z) "
+            "for x in (0, l1, l1 + l2)]")
+SJ3_AD = ("sp.Matrix.hstack(R, sym_skew(t) * R),\n"
+          "                                sp.Matrix.hstack(sp.zeros(3), R))")
+SJ3_TIDY = "    return sp.trigsimp(sp.expand(sp.Matrix.hstack(*columns)))"
+SJ3_RETURN = "    return sp.Matrix.hstack(*columns)"  # the submissions' (see graded)
+SJ3_TIP = ("    M = sp.eye(4)\n    M[0, 3] = l1 + l2 + l3\n"
+           "    R, p = (T * M)[:3, :3], (T * M)[:3, 3]  # the end effector's pose\n")
+SJ3_MISTAKES = [  # the 3R arm's J_s derived with sympy
+    (("columns.append(adjoint(T) * S)", "columns.append(S)"), "untransformed"),
+    ((SJ3_AXES, SJ3_AXES.replace("-z.cross", "z.cross")), "moment"),
+    ((SJ3_RETURN, "    J = sp.Matrix.hstack(*columns)\n"
+                  "    return sp.Matrix.vstack(J[3:, :], J[:3, :])"), "rows"),
+    ((SJ3_AD, "sp.Matrix.hstack(R, sp.zeros(3)),\n"
+              "                                sp.Matrix.hstack(sym_skew(t) * R, R))"),
+     "mr adjoint"),
+    ((SJ3_AD, SJ3_AD.replace("sym_skew(t) * R", "R * sym_skew(t)")), "adjoint"),
+    ((SJ3_RETURN, SJ3_TIP + "    Rt, pt = R.T, -R.T * p  # T^-1\n"
+                  "    Ad_inv = sp.Matrix.vstack(sp.Matrix.hstack(Rt, sym_skew(pt) * Rt),\n"
+                  "                              sp.Matrix.hstack(sp.zeros(3), Rt))\n"
+                  "    return Ad_inv * sp.Matrix.hstack(*columns)"), "body"),
+    ((SJ3_RETURN, SJ3_TIP + "    J = sp.Matrix.hstack(*columns)  # v + w x p at the tip\n"
+                  "    return sp.Matrix.vstack(J[:3, :] - sym_skew(p) * J[3:, :], J[3:, :])"),
+     "geometric"),
+]
 W_RET = "    return float(np.sqrt(max(d, 0.0)))"
 MANIP_MISTAKES = [
     (("    d = np.linalg.det(J @ J.T)\n",
@@ -308,6 +377,7 @@ IK_MISTAKES = [
      "missed"),
 ]
 TABLE = (("exp_twist", EXP_MISTAKES), ("poe_fk", FK_MISTAKES), ("space_jacobian", SJ_MISTAKES),
+         ("space_jacobian_3r", SJ3_MISTAKES),
          ("manipulability", MANIP_MISTAKES), ("lost_direction", LOST_MISTAKES),
          ("ik_with_limits", IK_MISTAKES))
 
@@ -328,7 +398,8 @@ def _right_copies(code: str) -> str:
 
 
 ALT = (  # other right answers: the series near 0 and G(θ)v/θ; M multiplied in first; the
-    # adjoint by conjugation; the singular values; the eigenvectors of J Jᵀ with the other
+    # adjoint by conjugation; the 3R arm's columns from the moved points, expanded; the
+    # singular values; the eigenvectors of J Jᵀ with the other
     # sign; a loop with capped steps returning a list and numpy's bool
     ("    if theta < 1e-12:  # a pure translation (to rounding)\n",
      "    X = np.zeros((4, 4))\n    X[:3, :3], X[:3, 3] = skew(w), v\n"
@@ -346,6 +417,10 @@ ALT = (  # other right answers: the series near 0 and G(θ)v/θ; M multiplied in
      "        X = np.zeros((4, 4))\n        X[:3, :3], X[:3, 3] = skew(S[3:, i]), S[:3, i]\n"
      "        Y = T @ X @ np.linalg.inv(T)\n"
      "        J[:, i] = [Y[0, 3], Y[1, 3], Y[2, 3], Y[2, 1], Y[0, 2], Y[1, 0]]\n"),
+    ("        columns.append(adjoint(T) * S)",
+     "        q_now = (T * sp.Matrix([-S[1], 0, 0, 1]))[:3, 0]  # where the axis passes now\n"
+     "        columns.append(sp.Matrix.vstack(q_now.cross(z), z))"),
+    (SJ3_RETURN, "    return sp.expand(sp.Matrix.hstack(*columns), trig=True)"),
     (W_RET, "    return float(np.prod(np.linalg.svd(J, compute_uv=False)))"),
     ("    U, s, Vt = np.linalg.svd(J)\n    if s[-1] >= tol * s[0]:\n        return None\n"
      "    return U[:, len(s) - 1]",
@@ -362,7 +437,9 @@ ALT = (  # other right answers: the series near 0 and G(θ)v/θ; M multiplied in
 def graded(tmp_path_factory):
     """Every submission of this file graded in one run: the mistakes, then the alternatives."""
     tmp = tmp_path_factory.mktemp("a06")
-    code = solution_code(NAME)
+    # the derivation's final tidying is left out (any form is right, and it costs 0.4 s a
+    # submission; the solution as written is graded in test_grader.py)
+    code = patched(solution_code(NAME), (SJ3_TIDY, SJ3_RETURN))
     subs = mistake_submissions(tmp, NAME, _isolated(code), TABLE, _right_copies(code))
     alt = write_notebook(tmp / "alt.ipynb", _right_copies(code), patched(_isolated(code), *ALT),
                          assignment=NAME)

@@ -1,6 +1,7 @@
 """Assignment 05 (orientation kinematics): the grader's references agree with kinlib by
 independent routes (finite differences, scipy's rotations and Slerp, Modern Robotics' SE(3)
-exponential, closed forms), the cases cover the edges they must, each classic mistake gets
+exponential, closed forms; det E derived with sympy against −cos β and finite
+differences), the cases cover the edges they must, each classic mistake gets
 its diagnosis from a real wrong submission, and right alternatives are accepted.
 
 Submissions are built from the source notebook's own code with one mistake patched in per
@@ -10,18 +11,22 @@ function; all of them are graded once, together, by a module-scoped fixture.
 import modern_robotics as mr
 import numpy as np
 import pytest
+import sympy as sp
 from grading_helpers import (
     by_function,
     misdiagnosed,
     mistake_submissions,
     patched,
     solution_code,
+    top,
     write_notebook,
 )
 from scipy.spatial.transform import Rotation, Slerp
 
 import kinlib as kl
 from kinlib.grade import grade_many
+from kinlib.grade._wire import decode, encode
+from kinlib.grade.assignments import _euler_det as ED
 from kinlib.grade.assignments import _interpolation as I
 from kinlib.grade.assignments import orientation as O
 
@@ -51,6 +56,30 @@ def test_rate_matrix_is_the_omega_of_a_finite_difference():
         Rd = (R(phi + h * rate) - R(phi - h * rate)) / (2 * h)
         assert np.allclose(O.rate_matrix(*phi) @ rate, vee(Rd @ R(phi).T), atol=1e-8)
         assert np.isclose(np.linalg.det(O.rate_matrix(*phi)), -np.cos(phi[1]), atol=1e-12)
+
+
+def test_rate_det_reference_is_minus_cos_beta_and_the_finite_difference_det():
+    """euler_rate_det_zyx's judge takes −cos β (typed here) on every case, also the exact 0
+    at the lock; det of E built from finite differences of scipy's ZYX rotation is the
+    determinant of the construction the mistakes vary; the mistake models differ from it."""
+    check = next(c for c in O.assignment().checks if c.function == "euler_rate_det_zyx")
+    cases = check.make_cases(0)
+    for a, b, g in cases:
+        assert check.verdict((a, b, g), decode(encode(-sp.cos(b)))).ok
+        assert check.verdict((a, b, g), decode(encode(sp.cos(b) - 2 * sp.cos(b)))).ok
+    assert any(-sp.cos(c[1]) == 0 for c in cases)  # the exact lock: the number 0 is right
+    A, B, G = sp.symbols("alpha beta gamma", real=True)
+    rng, h = np.random.default_rng(7), 1e-6
+    R = lambda p: Rotation.from_euler("ZYX", p).as_matrix()  # noqa: E731
+    for phi in rng.uniform(-np.pi, np.pi, (6, 3)):
+        E = np.column_stack([vee((R(phi + h * e) - R(phi - h * e)) / (2 * h) @ R(phi).T)
+                             for e in np.eye(3)])
+        at = dict(zip((A, B, G), phi, strict=True))
+        assert np.isclose(float(ED.rate_det(A, B, G).subs(at)), np.linalg.det(E), atol=1e-8)
+        assert np.isclose(np.linalg.det(E), -np.cos(phi[1]), atol=1e-8)
+    for model in (lambda *a: ED.rate_det(*a, third=(0, 0, 1)),
+                  lambda *a: ED.rate_det(*a, turned=False)):
+        assert sp.simplify(model(A, B, G) + sp.cos(B)) != 0
 
 
 def test_rates_reference_and_its_lock_test():
@@ -185,9 +214,13 @@ def test_cases_cover_what_they_must():
     spec = O.assignment()
     cases = {c.function: c.make_cases(0) for c in spec.checks}
     assert sum(map(len, cases.values())) >= 300
-    assert all(40 <= len(c) <= 60 for c in cases.values()), {k: len(v) for k, v in
-                                                             cases.items()}
-    assert spec.max_score == 38
+    assert all(40 <= len(c) <= 60 for f, c in cases.items() if f != "euler_rate_det_zyx"), {
+        k: len(v) for k, v in cases.items()}
+    assert spec.max_score == 41
+    # det E: symbols (other names, sums) and one exact lock β = ±π/2
+    derivation = cases["euler_rate_det_zyx"]
+    assert len(derivation) == 4 and all(isinstance(a, sp.Symbol) for a, _, _ in derivation[:2])
+    assert sum(abs(b) == sp.pi / 2 for _, b, _ in derivation) == 1
     slerp = cases["slerp"]
     assert sum(q0 @ q1 < 0 for q0, q1, _ in slerp) >= 15
     assert {0.0, 1.0} <= {t for *_, t in slerp}
@@ -278,6 +311,19 @@ RATES_MISTAKES = [
     (("if abs(cb) < tol:", "if abs(cb) < 1e-3:"), "missed"),
     (("if abs(cb) < tol:", "if abs(beta - np.pi / 2) < tol:"), "gimbal"),
 ]
+DET_E = "E = sp.Matrix.hstack(e_z, Rz * e_y, Rz * Ry * e_x)"
+DET_TIDY = "    return sp.simplify(E.det())"
+DET_RETURN = "    return E.det()"  # the submissions' (see graded)
+DET_MISTAKES = [  # det E derived with sympy
+    ((DET_E, "E = sp.Matrix.hstack(Rz * Ry * e_x, Rz * e_y, e_z)  # gamma_dot first"), "sign"),
+    ((DET_E, "E = sp.Matrix.hstack(e_z, Rz * e_y, Rz * Ry * e_z)"), "sin"),
+    ((DET_E, "E = sp.Matrix.hstack(e_z, e_y, Rz * Ry * e_x)"), "R_z"),
+    ((DET_E, "E = sp.Matrix.hstack(e_z, e_y, e_x)  # the base axes"), "constant"),
+    ((DET_E, "E = sp.Matrix.hstack(e_z, Rz * e_x, Rz * Ry * e_x)"), "singular"),
+    (("ca, sa, cb, sb = sp.cos(alpha), sp.sin(alpha), sp.cos(beta), sp.sin(beta)",
+      "ca, sa, cb, sb = np.cos(alpha), np.sin(alpha), np.cos(beta), np.sin(beta)"), "raised"),
+    ((DET_RETURN, "    return E"), "type"),
+]
 OMEGA_MISTAKES = [
     (("S = R_dot @ R.T", "S = R.T @ R_dot"), "frame"),
     (("S = R_dot @ R.T", "S = R @ R_dot.T"), "sign"),
@@ -360,7 +406,8 @@ INVERSE_MISTAKES = [
     (("if 1 + np.trace(R) < 1e-9:", "if False:"), "half turn"),
     (("if 1 + np.trace(R) < 1e-9:", "if 1 + np.trace(R) < 1e-3:"), "missed"),
 ]
-TABLE = (("euler_rate_matrix_zyx", RATE_MATRIX_MISTAKES), ("euler_rates_zyx", RATES_MISTAKES),
+TABLE = (("euler_rate_matrix_zyx", RATE_MATRIX_MISTAKES), ("euler_rate_det_zyx", DET_MISTAKES),
+         ("euler_rates_zyx", RATES_MISTAKES),
          ("omega_from_rdot", OMEGA_MISTAKES), ("omega_chain", CHAIN_MISTAKES),
          ("slerp", SLERP_MISTAKES), ("dual_quat_multiply", DQ_MISTAKES),
          ("sclerp", SCLERP_MISTAKES), ("cayley_to_matrix", CAYLEY_MISTAKES),
@@ -368,7 +415,8 @@ TABLE = (("euler_rate_matrix_zyx", RATE_MATRIX_MISTAKES), ("euler_rates_zyx", RA
 
 
 def alternatives(code: str) -> str:
-    """Right answers written another way: E from its columns (nested lists); the rates by
+    """Right answers written another way: E from its columns (nested lists); det E of the
+    body-frame matrix Rᵀ E, unsimplified; the rates by
     np.linalg.solve and det E; ω from the skew part (a list); the chain from the far end;
     slerp as q0 (q0* q1)^t with the flip at ≤ 0 and −q; the product as −â b̂; ScLERP as
     −(q̂1 q̂0*)^t q̂0; both Cayley maps in closed form."""
@@ -376,6 +424,10 @@ def alternatives(code: str) -> str:
         code,
         (E_RET, "    return np.column_stack([[0.0, 0.0, 1.0], rotz(alpha) @ [0.0, 1.0, 0.0],\n"
                 "                            rotz(alpha) @ roty(beta) @ [1, 0, 0]]).tolist()"),
+        (DET_RETURN,
+         "    Rx = sp.Matrix([[1, 0, 0], [0, sp.cos(gamma), -sp.sin(gamma)],\n"
+         "                    [0, sp.sin(gamma), sp.cos(gamma)]])\n"
+         "    return ((Rz * Ry * Rx).T * E).det()  # the body frame: the same determinant"),
         ("    if abs(cb) < tol:  # det E = -cos(beta)\n        return None\n" + RATES,
          "    E = np.array(euler_rate_matrix_zyx(alpha, beta, gamma))\n"
          "    if abs(np.linalg.det(E)) < tol:\n        return None\n"
@@ -408,7 +460,9 @@ def graded(tmp_path_factory):
     """Every submission of this file, graded in one run: the mistake submissions, then the
     alternatives."""
     tmp = tmp_path_factory.mktemp("orientation")
-    code = solution_code(NAME)
+    # det E's final simplification is left out (any form is right, and it costs 0.1 s a
+    # submission; the solution as written is graded in test_grader.py)
+    code = patched(solution_code(NAME), (DET_TIDY, DET_RETURN))
     right = code + "\n\n_slerp = slerp\n"  # the decoupled ScLERP's slerp is a right copy
     subs = mistake_submissions(tmp, NAME, code, TABLE, right)
     subs.append(write_notebook(tmp / "alt.ipynb", alternatives(code), assignment=NAME))
@@ -421,6 +475,15 @@ def test_orientation_mistakes_are_diagnosed(graded):
     wrong = misdiagnosed(mistakes, TABLE)
     assert not wrong, wrong
     results = [by_function(r) for r in mistakes]
+    numpy_cos = results[5]["euler_rate_det_zyx"]["diagnoses"][0]["message"]
+    assert "Symbol" in numpy_cos and "sympy's functions (sp.cos" in numpy_cos, numpy_cos
+    # at the exact lock det E is the number 0: right there for the sign and the singular E,
+    # "lock" for the constant one
+    for n, key in ((0, "sign"), (4, "singular")):
+        det = results[n]["euler_rate_det_zyx"]
+        assert det["total"] - det["passed"] == 3 and top(det) == key
+    constant = results[3]["euler_rate_det_zyx"]["diagnoses"]
+    assert [(d["key"], d["count"]) for d in constant] == [("constant", 3), ("lock", 1)]
     # the rare mistakes fail only where they matter
     lock = results[5]["euler_rates_zyx"]  # no lock test: only the locked cases fail
     locked = sum(O.locked(*c[:3], c[4]) for c in cases_of("euler_rates_zyx"))

@@ -1,5 +1,6 @@
 """Assignment 06 · differential kinematics: the exponential of a twist, forward kinematics
-by the product of exponentials, the space Jacobian, manipulability, the direction a
+by the product of exponentials, the space Jacobian (numerically, and of a planar 3R arm
+derived with sympy: :mod:`._sj_symbolic`), manipulability, the direction a
 singular Jacobian loses, and a damped least-squares IK loop that keeps within the joint
 limits.
 
@@ -23,6 +24,7 @@ from kinlib.check.mistakes import DEGREES, ROWS, TRANSPOSED
 from .._checks import Assignment, Check, Mistake, Verdict
 from ._limited_ik import ik_check
 from ._singular import lost_direction_check, manipulability_check
+from ._sj_symbolic import space_jacobian_3r_check
 from .common import random_rotations, random_unit_vectors
 from .jacobian_ik import prismatic_robots
 
@@ -290,6 +292,7 @@ def assignment() -> Assignment:
         Check("poe_fk", 6, "T = e^[S1]q1 ⋯ e^[Sn]qn M", _fk_cases, kl.poe_fk, FK_MISTAKES),
         Check("space_jacobian", 8, "J_s, column i = Ad(e^[S1]q1 ⋯ e^[S(i−1)]q(i−1)) S_i",
               _sj_cases, kl.space_jacobian, SJ_MISTAKES),
+        space_jacobian_3r_check(4),
         manipulability_check(4),
         lost_direction_check(6),
         ik_check(10),

@@ -1,10 +1,10 @@
-"""Assignment 05 · orientation kinematics: the ZYX Euler-rate matrix and the Euler rates of
-an angular velocity (None at gimbal lock), ω from Ṙ, angular velocities added along a chain,
-slerp, the dual-quaternion product, ScLERP, and Cayley's formula both ways (None for a half
-turn).
+"""Assignment 05 · orientation kinematics: the ZYX Euler-rate matrix, its determinant
+derived with sympy (:mod:`._euler_det`), the Euler rates of an angular velocity (None at
+gimbal lock), ω from Ṙ, angular velocities added along a chain, slerp, the dual-quaternion
+product, ScLERP, and Cayley's formula both ways (None for a half turn).
 
-The references are kinlib's: :func:`~kinlib.euler_rate_matrix` and
-:func:`~kinlib.euler_rates_singular` (``"ZYX"``), :func:`~kinlib.angular_velocity`,
+The references are kinlib's: :func:`~kinlib.euler_rate_matrix` (on sympy symbols too, for
+det E) and :func:`~kinlib.euler_rates_singular` (``"ZYX"``), :func:`~kinlib.angular_velocity`,
 :func:`~kinlib.add_angular_velocities`, :func:`~kinlib.quat_slerp`,
 :func:`~kinlib.dual_quat_multiply`, :func:`~kinlib.dual_quat_sclerp`,
 :func:`~kinlib.matrix_from_cayley` and :func:`~kinlib.cayley_from_matrix`.
@@ -19,6 +19,7 @@ import kinlib as kl
 from ...check import Rule
 from ...check.mistakes import FRAME, HALF_ANGLE, SIGN, SWAPPED
 from .._checks import RIGHT, Assignment, Check, Mistake, Verdict, as_numeric
+from ._euler_det import rate_det_check
 from ._interpolation import dual_quat_multiply_check, finite_model, sclerp_check, slerp_check
 from .common import DEGREES, TRANSPOSED, random_rotations, random_unit_vectors
 
@@ -325,6 +326,7 @@ def _inverse_cases(rng):
 def assignment() -> Assignment:
     checks = [Check("euler_rate_matrix_zyx", 4, "E(α, β, γ) with ω = E φ̇ (fixed frame)",
                     _rate_matrix_cases, rate_matrix, RATE_MATRIX_MISTAKES),
+              rate_det_check(),
               Check("euler_rates_zyx", 6, "φ̇ = E⁻¹ ω, or None at gimbal lock", _rates_cases,
                     judge=_judge_rates, is_trivial=lambda c: locked(*c[:3], c[4]),
                     trivial="of None at gimbal lock"),
