@@ -36,6 +36,7 @@ release: $(STAMP)
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
+	$(BIN)/lint-imports
 
 # Two workers (pytest-xdist); a file's tests stay together in one worker (a notebook's cells
 # share its kernel, the JupyterLab suite its server); the longest files first (conftest.py).

@@ -5,18 +5,31 @@ Conventions (frames, quaternion order, Euler sequences, ...) are stated once in
 :mod:`kinlib.conventions`.
 """
 
-from .astar import PlanResult, astar, cost_to_go
-from .axis_angle import (
+from .errors import KinlibError, URDFError
+from .kinematics.ik import IKResult, dls_step, pose_error
+from .kinematics.planar import Planar2RIK, planar_2r_fk, planar_2r_ik, planar_2r_jacobian
+from .kinematics.poe import body_jacobian, poe_fk, screw_axes, space_jacobian
+from .kinematics.robot import Robot, load_urdf
+from .kinematics.singularity import (
+    condition_number,
+    is_near_singular,
+    manipulability,
+    singular_values,
+    velocity_ellipsoid,
+)
+from .models.dh import DHRow, dh_transform, mdh_transform
+from .models.tree import Joint, Link, Mimic, Visual
+from .planning.astar import PlanResult, astar, cost_to_go
+from .planning.cspace import Circle, CSpaceGrid, Polygon, planar_2r_cspace, planar_2r_metric
+from .spatial.axis_angle import (
     axis_angle_from_matrix,
     exp_so3,
     log_so3,
     matrix_from_axis_angle,
     rodrigues_rotate,
 )
-from .cayley import cayley_from_matrix, matrix_from_cayley
-from .cspace import Circle, CSpaceGrid, Polygon, planar_2r_cspace, planar_2r_metric
-from .dh import DHRow, dh_transform, mdh_transform
-from .dual_quaternions import (
+from .spatial.cayley import cayley_from_matrix, matrix_from_cayley
+from .spatial.dual_quaternions import (
     dual_quat_conjugate,
     dual_quat_from_screw,
     dual_quat_from_transform,
@@ -26,13 +39,8 @@ from .dual_quaternions import (
     screw_from_dual_quat,
     transform_from_dual_quat,
 )
-from .errors import KinlibError, URDFError
-from .euler import EULER_SEQUENCES, euler_from_matrix, euler_gimbal_lock, matrix_from_euler
-from .ik import IKResult, dls_step, pose_error
-from .model import Joint, Link, Mimic, Visual
-from .planar import Planar2RIK, planar_2r_fk, planar_2r_ik, planar_2r_jacobian
-from .poe import body_jacobian, poe_fk, screw_axes, space_jacobian
-from .quaternions import (
+from .spatial.euler import EULER_SEQUENCES, euler_from_matrix, euler_gimbal_lock, matrix_from_euler
+from .spatial.quaternions import (
     axis_angle_from_quat,
     matrix_from_quat,
     quat_conjugate,
@@ -46,8 +54,7 @@ from .quaternions import (
     quat_wxyz_from_xyzw,
     quat_xyzw_from_wxyz,
 )
-from .robot import Robot
-from .rotations import (
+from .spatial.rotations import (
     check_rotation,
     is_rotation,
     nearest_rotation,
@@ -57,23 +64,15 @@ from .rotations import (
     skew,
     vee,
 )
-from .se3 import adjoint, exp_se3, hat_se3, log_se3, vee_se3
-from .singularity import (
-    condition_number,
-    is_near_singular,
-    manipulability,
-    singular_values,
-    velocity_ellipsoid,
-)
-from .transforms import (
+from .spatial.se3 import adjoint, exp_se3, hat_se3, log_se3, vee_se3
+from .spatial.transforms import (
     check_transform,
     transform,
     transform_inverse,
     transform_points,
     transform_vectors,
 )
-from .urdf import load_urdf
-from .velocity import (
+from .spatial.velocity import (
     add_angular_velocities,
     angular_velocity,
     euler_rate_matrix,

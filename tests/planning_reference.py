@@ -1,7 +1,9 @@
-"""Plain reference implementations for tests/test_planning.py (independent of kinlib.cspace).
+"""Plain reference implementations for tests/test_planning.py (independent of
+kinlib.planning.cspace).
 
 Scalar 2-D geometry, the 8 grid moves, the documented edge costs and a plain-heapq Dijkstra,
-written from the formulas in the docstrings of kinlib.cspace / kinlib.astar, not from their code.
+written from the formulas in the docstrings of kinlib.planning.cspace / kinlib.planning.astar,
+not from their code.
 """
 
 import heapq
@@ -11,7 +13,7 @@ import math
 import numpy as np
 
 from kinlib import planar_2r_fk
-from kinlib.cspace import Circle, Polygon
+from kinlib.planning.cspace import Circle, Polygon
 
 MOVES = [(1, 0), (0, 1), (-1, 0), (0, -1), (1, 1), (-1, 1), (-1, -1), (1, -1)]
 

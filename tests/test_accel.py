@@ -8,7 +8,7 @@ import pytest
 
 import kinlib as kl
 from kinlib import _accel
-from kinlib.quaternions import _matrix_from_quat_numpy
+from kinlib.spatial.quaternions import _matrix_from_quat_numpy
 
 needs_numba = pytest.mark.skipif(_accel.kernels() is None, reason="numba not installed")
 
@@ -83,7 +83,7 @@ def _rotations(n, seed):
 
 @needs_numba
 def test_quat_from_matrix_kernel_matches_numpy():
-    from kinlib.quaternions import _quat_from_matrix_numpy
+    from kinlib.spatial.quaternions import _quat_from_matrix_numpy
 
     R = _rotations(3 * _accel.MIN_BATCH, 3).reshape(3, -1, 3, 3)
     fast = kl.quat_from_matrix(R)
@@ -95,7 +95,7 @@ def test_quat_from_matrix_kernel_matches_numpy():
 
 @needs_numba
 def test_rotation_errors_kernel_matches_numpy():
-    from kinlib.rotations import _rotation_errors_numpy, rotation_errors
+    from kinlib.spatial.rotations import _rotation_errors_numpy, rotation_errors
 
     rng = np.random.default_rng(5)
     M = _rotations(_accel.MIN_BATCH + 11, 4) + rng.normal(scale=1e-3, size=(1, 3, 3))

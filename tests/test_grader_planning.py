@@ -24,9 +24,9 @@ from grading_helpers import (
 )
 
 import kinlib as kl
-from kinlib.cspace import NEIGHBOURS
 from kinlib.grade import grade_many
 from kinlib.grade.assignments import planning as P
+from kinlib.planning.cspace import NEIGHBOURS
 
 NAME = "04_planning"
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from kinlib import KinlibError, rotx
-from kinlib.holonomic import base_heading_lateral, base_pose, base_step
+from kinlib.kinematics.holonomic import base_heading_lateral, base_pose, base_step
 
 YAWS = np.linspace(-np.pi, np.pi, 13)
 

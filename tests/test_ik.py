@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import kinlib as kl
-from kinlib import IKResult, KinlibError, ik
+from kinlib import IKResult, KinlibError
+from kinlib.kinematics import ik
 from kinlib.robots import autorob_test_robot, panda, planar_2r, puma560, three_dof_arm, ur5
 
 MODELS = [planar_2r, three_dof_arm, puma560, ur5, panda]

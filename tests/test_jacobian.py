@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from kinlib import KinlibError, Robot, _fk, planar_2r_jacobian
-from kinlib.model import Joint, Link, Mimic
+from kinlib import KinlibError, Robot, planar_2r_jacobian
+from kinlib.kinematics import _fk
+from kinlib.models.tree import Joint, Link, Mimic
 from kinlib.robots import autorob_test_robot, panda, planar_2r, puma560, three_dof_arm, ur5
 
 
@@ -144,7 +145,7 @@ def test_compiled_and_numpy_paths_and_batches_agree(model):
     Q = sample(robot, _fk.PARALLEL_MIN + 5, 6)  # the parallel kernel too
     T, J = robot.fk_and_jacobian(Q, link)
     path = robot._path(link)
-    T0, J0 = _fk.run_chain_jacobian(robot._chain(link), robot._table, robot._order, Q, path,
+    T0, J0 = _fk.run_chain_jacobian(robot.chain_table(link), robot._table, robot._order, Q, path,
                                     compiled=False)
     np.testing.assert_allclose(J, J0, atol=1e-12)
     np.testing.assert_allclose(T, T0, atol=1e-12)

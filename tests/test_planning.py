@@ -1,4 +1,5 @@
-"""Configuration-space planning for the planar 2R arm (seed 001): kinlib.cspace, kinlib.astar.
+"""Configuration-space planning for the planar 2R arm (seed 001): kinlib.planning.cspace,
+kinlib.planning.astar.
 
 Reference values are recomputed from the documented formulas with independent, plain
 (scalar) geometry, a plain-heapq Dijkstra (tests/planning_reference.py) and the seed's
@@ -30,8 +31,8 @@ from planning_reference import (
 )
 
 from kinlib import KinlibError, planar_2r_fk, planar_2r_jacobian
-from kinlib.astar import astar, cost_to_go
-from kinlib.cspace import Circle, Polygon, planar_2r_cspace, planar_2r_metric
+from kinlib.planning.astar import astar, cost_to_go
+from kinlib.planning.cspace import Circle, Polygon, planar_2r_cspace, planar_2r_metric
 
 # --------------------------------------------------------------------------- the metric
 

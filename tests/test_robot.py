@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from kinlib import KinlibError, Robot, _fk, load_urdf, planar_2r_fk
-from kinlib.model import Joint, Link, Mimic
+from kinlib import KinlibError, Robot, load_urdf, planar_2r_fk
+from kinlib.kinematics import _fk
+from kinlib.models.tree import Joint, Link, Mimic
 from kinlib.robots import autorob_test_robot, panda, planar_2r, puma560, three_dof_arm, ur5
 
 ALL_MODELS = [planar_2r, three_dof_arm, puma560, ur5, panda, autorob_test_robot]

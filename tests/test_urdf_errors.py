@@ -27,13 +27,13 @@ import pytest
 from watchdog import WATCHDOG_SECONDS, no_hang
 
 import kinlib
-import kinlib.urdf
+import kinlib.models.urdf
 from kinlib import KinlibError, URDFError, load_urdf
 
 CORPUS = Path(__file__).parent / "urdf_corpus"
-MAX_BYTES = kinlib.urdf.MAX_BYTES
-MAX_ELEMENTS = kinlib.urdf.MAX_ELEMENTS
-MAX_DEPTH = kinlib.urdf.MAX_DEPTH
+MAX_BYTES = kinlib.models.urdf.MAX_BYTES
+MAX_ELEMENTS = kinlib.models.urdf.MAX_ELEMENTS
+MAX_DEPTH = kinlib.models.urdf.MAX_DEPTH
 
 
 # -- where the error is expected -------------------------------------------------------

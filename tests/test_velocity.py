@@ -10,8 +10,8 @@ from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
 import kinlib as kl
+from kinlib.kinematics.analytic import analytic_jacobian
 from kinlib.robots import panda, puma560, ur5
-from kinlib.velocity import analytic_jacobian
 
 
 def S(w):

@@ -1,5 +1,5 @@
-"""More checks of kinlib.velocity and kinlib.singularity, each against an independent
-reference: scipy rotation-vector trajectories, closed forms for det E and for the planar
+"""More checks of kinlib.spatial.velocity and kinlib.kinematics.singularity, each against an
+independent reference: scipy rotation-vector trajectories, closed forms for det E and for the planar
 2R velocity ellipsoid, batched calls against loops, and junk input."""
 
 import numpy as np

@@ -16,7 +16,7 @@ import pytest
 import umsgpack
 
 from kinlib import KinlibError, load_urdf, matrix_from_quat, rotx, transform
-from kinlib.holonomic import base_pose
+from kinlib.kinematics.holonomic import base_pose
 from kinlib.robots import autorob_test_robot, puma560
 from kinlib.viz import RobotVisualizer, Scene
 

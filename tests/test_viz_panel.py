@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from kinlib import DHRow, KinlibError, Robot
-from kinlib.holonomic import base_pose
+from kinlib.kinematics.holonomic import base_pose
 from kinlib.robots import autorob_test_robot, puma560
 from kinlib.viz import joint_panel
 

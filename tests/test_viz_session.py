@@ -10,7 +10,7 @@ import pytest
 
 
 def test_import_kinlib_does_not_load_meshcat_or_widgets():
-    code = ("import sys, kinlib, kinlib.holonomic, kinlib.robots\n"
+    code = ("import sys, kinlib, kinlib.kinematics.holonomic, kinlib.robots\n"
             "heavy = ('meshcat', 'ipywidgets', 'anywidget', 'kinlib.viz', 'zmq')\n"
             "bad = [m for m in heavy if m in sys.modules]\n"
             "assert not bad, bad\n")

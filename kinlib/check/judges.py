@@ -28,7 +28,7 @@ def euler_angles_judge(seq: str = "ZYX", atol: float = 1e-6):
     """Three angles (in letter order) are right when they rebuild the matrix ``args[0]``:
     at gimbal lock every pair that does is right. Diagnoses degrees, angles in the wrong
     order, the other kind of axes, NaN at the lock and a wrong lock branch."""
-    from ..euler import euler_from_matrix, euler_gimbal_lock, matrix_from_euler
+    from ..spatial.euler import euler_from_matrix, euler_gimbal_lock, matrix_from_euler
 
     names = ", ".join(_GREEK)
     build = product_text(seq)
@@ -69,7 +69,7 @@ def euler_angles_judge(seq: str = "ZYX", atol: float = 1e-6):
 def axis_angle_judge(args, got):
     """An ``(axis, angle)`` pair is right when Rodrigues' matrix of it is ``args[0]``, with
     the angle in [0, π] and a unit axis."""
-    from ..axis_angle import axis_angle_from_matrix, matrix_from_axis_angle
+    from ..spatial.axis_angle import axis_angle_from_matrix, matrix_from_axis_angle
 
     (R_in,) = args
     if not isinstance(got, tuple | list) or len(got) != 2:

@@ -67,7 +67,7 @@ def euler_matrix_mistakes(seq: str) -> list[Mistake]:
     """The wrong matrices of an Euler/fixed-angle sequence ``seq`` (models take the three
     angles in letter order): the other kind of axes (intrinsic ↔ extrinsic: the product
     reversed), the letters read backwards, and other sequences."""
-    from ..euler import matrix_from_euler
+    from ..spatial.euler import matrix_from_euler
 
     swapped = seq.swapcase()
     out = [EXTRINSIC.of(lambda *a: matrix_from_euler(list(a), swapped),

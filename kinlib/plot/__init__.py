@@ -10,7 +10,7 @@ import numpy as np
 
 from .._validate import as_array
 from ..errors import KinlibError
-from ..transforms import check_transform
+from ..spatial.transforms import check_transform
 
 __all__ = ["axes_3d", "plot_frame", "plot_point", "arm_points", "plot_arm", "animate",
            "AXIS_COLORS"]
@@ -80,7 +80,7 @@ def arm_points(q, l1, l2) -> np.ndarray:
            [1. , 0. ],
            [1. , 0.5]])
     """
-    from ..planar import planar_2r_fk
+    from ..kinematics.planar import planar_2r_fk
 
     q = as_array(q, "q", (2,))
     elbow = float(l1) * np.stack([np.cos(q[..., 0]), np.sin(q[..., 0])], axis=-1)

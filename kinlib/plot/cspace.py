@@ -25,8 +25,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array
-from ..cspace import Circle, CSpaceGrid, Polygon, planar_2r_cspace
 from ..errors import KinlibError
+from ..planning.cspace import Circle, CSpaceGrid, Polygon, planar_2r_cspace
 
 __all__ = ["CSPACE_EXTENT", "plot_obstacles", "cspace_image", "plot_cspace", "wrap_path"]
 

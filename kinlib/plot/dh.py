@@ -26,9 +26,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..dh import dh_transform
 from ..errors import KinlibError
-from ..transforms import check_transform
+from ..models.dh import dh_transform
+from ..spatial.transforms import check_transform
 from . import AXIS_COLORS, plot_frame
 
 __all__ = ["DHGeometry", "dh_geometry", "plot_dh_row"]

@@ -27,7 +27,7 @@ import numpy as np
 
 from .._validate import as_array, parse_seq
 from ..errors import KinlibError
-from ..rotations import rotx, roty, rotz
+from ..spatial.rotations import rotx, roty, rotz
 from . import AXIS_COLORS
 
 __all__ = ["GimbalRings", "gimbal_rings", "plot_gimbal", "RING_RADII"]

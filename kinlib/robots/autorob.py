@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from importlib import resources
 
+from ..kinematics.robot import load_urdf
+
 __all__ = ["autorob_test_robot", "urdf_path"]
 
 
@@ -25,8 +27,6 @@ def autorob_test_robot():
     >>> robot.fk([0, 0, 0], link="link2")[:3, 3]
     array([5., 3., 0.])
     """
-    from ..urdf import load_urdf
-
     with resources.as_file(urdf_path()) as path:
         return load_urdf(
             path,

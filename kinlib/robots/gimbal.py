@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..kinematics.robot import load_urdf
+
 __all__ = ["gimbal_zyx"]
 
 _URDF = """<?xml version="1.0"?>
@@ -48,8 +50,6 @@ def gimbal_zyx():
     >>> bool(np.allclose(g.fk(q)[:3, :3], kl.matrix_from_euler(q, "ZYX")))
     True
     """
-    from ..urdf import load_urdf
-
     robot = load_urdf(_URDF)
     robot.poses.update({"zero": np.zeros(3), "locked": np.array([0.35, np.pi / 2, -0.5])})
     robot.reference = "Z-Y-X Euler angles as joints (notebook 04); Craig, sec. 2.8"

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..dh import DHRow
+from ..kinematics.robot import Robot
+from ..models.dh import DHRow
 
 __all__ = ["ur5", "panda"]
 
@@ -29,8 +30,6 @@ def ur5():
     >>> robot.fk(np.zeros(6))[:3, 3].round(5)
     array([-0.81725, -0.19145, -0.00549])
     """
-    from ..robot import Robot
-
     d = [0.089159, 0.0, 0.0, 0.10915, 0.09465, 0.0823]
     a = [0.0, -0.425, -0.39225, 0.0, 0.0, 0.0]
     alpha = [np.pi / 2, 0.0, 0.0, np.pi / 2, -np.pi / 2, 0.0]
@@ -68,8 +67,6 @@ def panda():
     >>> robot.fk(robot.poses["ready"])[:3, 3].round(4) + 0.0
     array([0.3069, 0.    , 0.5903])
     """
-    from ..robot import Robot
-
     a = [0.0, 0.0, 0.0, 0.0825, -0.0825, 0.0, 0.088]
     d = [0.333, 0.0, 0.316, 0.0, 0.384, 0.0, 0.0]
     alpha = [0.0, -np.pi / 2, np.pi / 2, np.pi / 2, -np.pi / 2, np.pi / 2, np.pi / 2]

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..dh import DHRow
+from ..kinematics.robot import Robot
+from ..models.dh import DHRow
 
 __all__ = ["planar_2r", "three_dof_arm"]
 
@@ -19,8 +20,6 @@ def planar_2r(l1: float = 1.0, l2: float = 1.0):
     >>> arm.fk([0.0, np.pi / 2])[:2, 3].round(12)
     array([2., 1.])
     """
-    from ..robot import Robot
-
     return Robot.from_dh(
         [DHRow(a=l1, alpha=0.0), DHRow(a=l2, alpha=0.0)],
         name="planar_2r",
@@ -41,8 +40,6 @@ def three_dof_arm(d1: float = 0.4, a2: float = 0.5, a3: float = 0.4):
     >>> arm.fk([0.0, 0.0, 0.0])[:3, 3].round(12)
     array([0.9, 0. , 0.4])
     """
-    from ..robot import Robot
-
     lim = (-np.deg2rad(170.0), np.deg2rad(170.0))
     return Robot.from_dh(
         [DHRow(d=d1, a=0.0, alpha=np.pi / 2, limits=lim),

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..dh import DHRow
+from ..kinematics.robot import Robot
+from ..models.dh import DHRow
 
 __all__ = ["puma560", "PUMA560_TABLE"]
 
@@ -33,8 +34,6 @@ def puma560():
     >>> robot.fk(robot.poses["zero"])[:3, 3].round(5)
     array([0.41148, 0.14909, 0.48932])
     """
-    from ..robot import Robot
-
     rows = [DHRow(a=a_mm / 1000.0, alpha=np.deg2rad(alpha), d=d_mm / 1000.0,
                   limits=tuple(np.deg2rad(rng)), name=f"joint{i}")
             for i, _theta, alpha, a_mm, d_mm, rng in PUMA560_TABLE]

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..cspace import Circle, Polygon
 from ..errors import KinlibError
+from ..planning.cspace import Circle, Polygon
 from . import _scene
 from ._scene import mg
 

@@ -3,7 +3,7 @@
 The base controls are those of seed 000 (KinEval's keyboard base controls): move forward,
 back, left, right along the base's own heading and lateral axes, turn left or right, and
 show the heading and lateral vectors in world coordinates
-(:mod:`kinlib.holonomic`). ipywidgets is imported when a panel is made.
+(:mod:`kinlib.kinematics.holonomic`). ipywidgets is imported when a panel is made.
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import KinlibError
-from ..holonomic import base_heading_lateral, base_step
+from ..kinematics.holonomic import base_heading_lateral, base_step
 
 __all__ = ["joint_panel", "slider_bounds", "BASE_MOVES"]
 
@@ -59,7 +59,7 @@ def joint_panel(viz, *, step: float = 0.1, turn_step: float = np.pi / 12, base: 
     One ``FloatSlider`` per joint (in the order of q), bounded by :func:`slider_bounds` and
     starting at ``viz.q``; moving one calls ``viz.set_configuration``. Below them, the base
     controls: buttons ``forward``, ``back``, ``left``, ``right``, ``turn left``,
-    ``turn right`` that move ``viz.base`` with :func:`kinlib.holonomic.base_step` by
+    ``turn right`` that move ``viz.base`` with :func:`kinlib.kinematics.holonomic.base_step` by
     ``step`` metres or ``turn_step`` radians (editable in the panel), and a line showing
     the base's heading and lateral vectors in world coordinates. ``base=False`` leaves
     the base controls out (a robot that stands still).

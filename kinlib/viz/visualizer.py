@@ -25,9 +25,9 @@ import numpy as np
 
 from .._validate import as_array
 from ..errors import KinlibError
-from ..quaternions import quat_from_matrix
-from ..robot import Robot
-from ..transforms import check_transform, transform_inverse
+from ..kinematics.robot import Robot
+from ..spatial.quaternions import quat_from_matrix
+from ..spatial.transforms import check_transform, transform_inverse
 from . import _scene
 from ._geometry import axis_transforms, decompose, segment_transforms
 from ._scene import mg
@@ -211,7 +211,7 @@ class RobotVisualizer:
         return out
 
     def _check_one_q(self, q) -> np.ndarray:
-        a = self.robot._check_q(q)
+        a = self.robot.check_q(q)
         if a.ndim != 1:
             raise KinlibError(f"q: expected one configuration of {self.robot.dof} values, got "
                               f"shape {a.shape}; use animate() for a sequence")
@@ -244,7 +244,7 @@ class RobotVisualizer:
         """
         from meshcat.animation import Animation, AnimationClip, AnimationTrack
 
-        a = self.robot._check_q(qs, "qs")
+        a = self.robot.check_q(qs, "qs")
         if a.ndim != 2 or a.shape[0] < 1:
             raise KinlibError(f"qs: expected a sequence of configurations, shape (T, "
                               f"{self.robot.dof}) with T >= 1, got shape {a.shape}")

@@ -158,7 +158,7 @@ def _zyx_cases():
 def _zyx_judge():
     """Angles that rebuild R are right (euler_angles_judge); at gimbal lock, angles right
     but for the sign of γ are the +90° formula used at −90° (or the reverse)."""
-    from ...euler import euler_gimbal_lock, matrix_from_euler
+    from ...spatial.euler import euler_gimbal_lock, matrix_from_euler
 
     base = euler_angles_judge("ZYX")
 

@@ -15,7 +15,7 @@ ALPHA_NEW = np.deg2rad(60.0)
 def _gamma_new():
     """γ' with (α', 90°, γ') = the locked R: kinlib's angles at the lock are (0, 90°, γ0)
     and the family they stand for is (t, 90°, γ0 + t)."""
-    from ...euler import euler_from_matrix, matrix_from_euler
+    from ...spatial.euler import euler_from_matrix, matrix_from_euler
 
     _, _, gamma0 = euler_from_matrix(matrix_from_euler(LOCKED, "ZYX"), "ZYX")
     return gamma0 + ALPHA_NEW
@@ -32,7 +32,7 @@ def _turns():
 
 
 def _lock_rank():
-    from ...velocity import euler_rate_matrix
+    from ...spatial.velocity import euler_rate_matrix
 
     return np.linalg.matrix_rank(euler_rate_matrix(LOCKED, "ZYX"))
 
@@ -43,7 +43,7 @@ ARM_ENDS = {"a": np.array([1.0, 0.0, 0.0]), "b": np.array([0.0, 0.0, 1.0]),
 
 
 def _arm_end(seq):
-    from ...euler import matrix_from_euler
+    from ...spatial.euler import matrix_from_euler
 
     return matrix_from_euler(np.deg2rad([90.0, 90.0, 90.0]), seq) @ [1.0, 0.0, 0.0]
 
@@ -55,7 +55,7 @@ def _option(direction) -> str:
 # 04.5: the middle angles at which X-Y-X locks, in [0, π]
 def _xyx_locks():
     """The middle angles among multiples of π/8 in [0, π] where E of X-Y-X is singular."""
-    from ...velocity import euler_rates_singular
+    from ...spatial.velocity import euler_rates_singular
 
     grid = np.linspace(0.0, np.pi, 9)
     return grid[[bool(euler_rates_singular([0.3, m, -0.8], "XYX")) for m in grid]]

@@ -95,7 +95,7 @@ _PERP_FORM = ("dot product", "that is b⊥ indeed, but written as b − (k·b) k
 
 # 05.3: the inverse problem for the notebook's R_try
 def _R_try():
-    from ...euler import matrix_from_euler
+    from ...spatial.euler import matrix_from_euler
 
     return matrix_from_euler([0.7, -1.1, 0.4], "ZYX")
 
@@ -106,25 +106,25 @@ def _axis_angle_of_R_try(args, got):
 
 # 05.4: Cayley's parameters of the notebook's R_cay_try, a product of three turns
 def _R_cay():
-    from ...euler import matrix_from_euler
+    from ...spatial.euler import matrix_from_euler
 
     return matrix_from_euler(np.deg2rad([30.0, -50.0, 80.0]), "ZYX")
 
 
 def _s_cay():
-    from ...cayley import cayley_from_matrix
+    from ...spatial.cayley import cayley_from_matrix
 
     return cayley_from_matrix(_R_cay())
 
 
 def _axis_angle_cay():
-    from ...axis_angle import axis_angle_from_matrix
+    from ...spatial.axis_angle import axis_angle_from_matrix
 
     return axis_angle_from_matrix(_R_cay())
 
 
 def _skew_part():
-    from ...rotations import vee
+    from ...spatial.rotations import vee
 
     R = _R_cay()
     return vee(R - R.T) / 2

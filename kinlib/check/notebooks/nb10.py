@@ -42,7 +42,7 @@ def _wrap(a):
 
 
 def _down(x, y, l1, l2):
-    from ...planar import planar_2r_ik
+    from ...kinematics.planar import planar_2r_ik
 
     sol = planar_2r_ik(x, y, l1, l2, elbow="down")
     return np.array([sol.theta1, sol.theta2], dtype=float)
@@ -132,7 +132,7 @@ L1, L2 = 1.0, 0.7
 
 def _n_solutions(r, l1=L1, l2=L2, tol=1e-6):
     """Distinct IK solutions of a target at distance r on the x axis, counted with kinlib."""
-    from ...planar import planar_2r_ik
+    from ...kinematics.planar import planar_2r_ik
 
     up, down = (planar_2r_ik(r, 0.0, l1, l2, elbow=e) for e in ("up", "down"))
     if not up.reachable:
@@ -153,7 +153,7 @@ _BASE = {"a": "none: the base is not in the workspace", "b": "one, the arm folde
 
 def _base_option() -> str:
     """The option the mathematics gives: folded, the tip is at the base for every θ1."""
-    from ...planar import planar_2r_fk
+    from ...kinematics.planar import planar_2r_fk
 
     theta1 = np.linspace(-np.pi, np.pi, 13)
     tips = planar_2r_fk(theta1, np.pi, 0.8, 0.8)[:, :2, 3]

@@ -88,19 +88,19 @@ def _g_abs_mistakes():
 
 
 def _ee_step(dtheta=DTHETA_STEP):
-    from ...cspace import planar_2r_metric
+    from ...planning.cspace import planar_2r_metric
 
     return float(planar_2r_metric(THETA_STEP, dtheta, L1, L2))
 
 
 def _empty_grid():
-    from ...cspace import planar_2r_cspace
+    from ...planning.cspace import planar_2r_cspace
 
     return planar_2r_cspace(L1, L2, [], n=N_EMPTY)
 
 
 def _seam_cost():
-    from ...astar import astar
+    from ...planning.astar import astar
 
     return astar(_empty_grid(), FROM, TO, metric="joint").cost
 

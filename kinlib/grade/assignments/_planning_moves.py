@@ -13,7 +13,7 @@ from functools import lru_cache, partial
 import numpy as np
 
 import kinlib as kl
-from kinlib.cspace import NEIGHBOURS
+from kinlib.planning.cspace import NEIGHBOURS
 
 from .._checks import RIGHT, Mistake, Verdict, fmt
 from .._wire import Odd

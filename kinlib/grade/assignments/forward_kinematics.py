@@ -16,7 +16,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 import kinlib as kl
-from kinlib.model import Joint, Link, origin_from_xyz_rpy
+from kinlib.models.tree import Joint, Link, origin_from_xyz_rpy
 from kinlib.robots.autorob import urdf_path
 
 from .._checks import RIGHT, Assignment, Check, Mistake, Verdict, as_numeric, close, fmt
@@ -102,7 +102,7 @@ def stack(robot, q, local=right_local, *, from_root=False, pop=True) -> dict:
 
 
 def kinlib_robot(robot) -> kl.Robot:
-    """The joint dict as a kinlib Robot (axes normalised by :class:`kinlib.model.Joint`)."""
+    """The joint dict as a kinlib Robot (axes normalised by :class:`kinlib.models.tree.Joint`)."""
     names = [robot["root"]] + [jt["child"] for jt in robot["joints"]]
     joints = [Joint(jt["name"], jt["type"], jt["parent"], jt["child"],
                     origin=origin_from_xyz_rpy(jt["xyz"], jt["rpy"]), axis=jt["axis"])

@@ -2,9 +2,9 @@
 torus, the end-effector metric JᵀJ of the 2R arm derived with sympy, the cost of one move
 under the joint and the end-effector metric, and A*.
 
-The reference is kinlib: :meth:`kinlib.CSpaceGrid.edge_costs` for one move, :func:`kinlib.astar`
-for the optimal cost. A path is judged by its own cost (kinlib's edge costs summed along it),
-so any optimal path is right.
+The reference is kinlib: :meth:`kinlib.CSpaceGrid.edge_costs` for one move,
+:func:`kinlib.astar` for the optimal cost. A path is judged by its own cost (kinlib's edge
+costs summed along it), so any optimal path is right.
 """
 
 from __future__ import annotations

@@ -1,0 +1,205 @@
+r"""Forward kinematics over a joint tree, batched (private).
+
+Each joint's local transform ``origin @ motion(q) @ post`` is written as
+
+.. math:: L(q) = M_0 + f_1(q)\,M_1 + f_2(q)\,M_2
+
+with :math:`(f_1, f_2) = (\sin q, 1-\cos q)` for a revolute joint (Rodrigues:
+``motion = I + sin q K + (1 − cos q) K²``), :math:`(q, 0)` for a prismatic joint and
+:math:`(0, 0)` for a fixed one. The matrices are precomputed once per robot, so a joint
+costs three multiply-adds and one 4×4 product per configuration: the matrix stack of
+seed 000, with the stack replaced by each frame's parent index.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from .._accel import numba_disabled
+
+__all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian"]
+
+_KIND = {"fixed": 0, "revolute": 1, "continuous": 1, "prismatic": 2}
+
+
+class FKTable:
+    """The robot's joints in traversal order as arrays the kernels read."""
+
+    def __init__(self, joints_in_order, frame_of_link, q_index, mimic_source):
+        n = len(joints_in_order)
+        self.parent = np.empty(n, dtype=np.int64)   # frame index of the parent link
+        self.kind = np.empty(n, dtype=np.int64)
+        self.qidx = np.full(n, -1, dtype=np.int64)  # column of q driving the joint
+        self.mult = np.ones(n)
+        self.offset = np.zeros(n)
+        self.M = np.zeros((n, 3, 4, 4))
+        for j, jt in enumerate(joints_in_order):
+            self.parent[j] = frame_of_link[jt.parent]
+            self.kind[j] = _KIND[jt.type]
+            if jt.type != "fixed":
+                src, mult, off = mimic_source[jt.name]
+                self.qidx[j], self.mult[j], self.offset[j] = q_index[src], mult, off
+            O, P, u = jt.origin, jt.post, jt.axis
+            if self.kind[j] == 1:
+                K = np.zeros((4, 4))
+                K[:3, :3] = [[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]]
+                self.M[j, 0] = O @ P
+                self.M[j, 1] = O @ K @ P
+                self.M[j, 2] = O @ K @ K @ P
+            elif self.kind[j] == 2:
+                D = np.zeros((4, 4))
+                D[:3, 3] = u
+                self.M[j, 0] = O @ P
+                self.M[j, 1] = O @ D @ P
+            else:
+                self.M[j, 0] = O @ P
+        self.n = n
+        # packed for the compiled kernel (fewer arguments, less dispatch cost)
+        self.ints = np.ascontiguousarray(np.stack([self.parent, self.kind, self.qidx]))
+        self.floats = np.ascontiguousarray(np.stack([self.mult, self.offset]))
+        for a in (self.parent, self.kind, self.qidx, self.mult, self.offset, self.M, self.ints,
+                  self.floats):
+            a.setflags(write=False)
+
+    def coefficients(self, q: np.ndarray, sel: np.ndarray):
+        """``f1, f2`` of the selected joints for q of shape (N, dof): each (N, len(sel))."""
+        padded = np.concatenate([q, np.zeros((q.shape[0], 1))], axis=1)  # qidx -1: fixed
+        qe = padded[:, self.qidx[sel]] * self.mult[sel] + self.offset[sel]
+        kind = self.kind[sel]
+        rev = kind == 1
+        f1 = np.where(rev, np.sin(qe), np.where(kind == 2, qe, 0.0))
+        h = np.sin(0.5 * qe)
+        f2 = np.where(rev, 2.0 * h * h, 0.0)  # 1 − cos q without cancellation
+        return f1, f2
+
+
+def _z_to(u: np.ndarray) -> np.ndarray:
+    """A rotation B (as 4×4) with ``B @ e_z = u``: columns x', y', u, orthonormal."""
+    B = np.eye(4)
+    if np.array_equal(u, [0.0, 0.0, 1.0]):
+        return B  # DH joints: no rounding at all
+    helper = np.eye(3)[np.argmin(np.abs(u))]  # the coordinate axis least aligned with u
+    x = np.cross(helper, u)
+    x /= np.linalg.norm(x)
+    B[:3, 0], B[:3, 1], B[:3, 2] = x, np.cross(u, x), u
+    return B
+
+
+class ChainTable:
+    r"""A path of joints from the root as ``D_0 · Z(q_1) · D_1 ⋯ Z(q_m) · D_m``.
+
+    Every moving joint ``origin · motion(u, q) · post`` is rewritten with a constant
+    rotation ``B`` that takes z to its axis u: ``(origin B) · Z(q) · (Bᵀ post)``, where
+    ``Z`` is ``Rz(q)`` (revolute) or ``Tz(q)`` (prismatic); neighbouring constants (and
+    fixed joints) are multiplied together once. Applying ``Rz(q)`` on the right mixes two
+    columns (12 products), so a joint costs one sin/cos pair and about 50 products.
+    """
+
+    def __init__(self, table: FKTable, joints, sel):
+        D = [np.eye(4)]
+        kinds, qidx, mult, offset = [], [], [], []
+        for j, jt in zip(sel, joints, strict=True):
+            if table.kind[j] == 0:
+                D[-1] = D[-1] @ jt.origin @ jt.post
+                continue
+            B = _z_to(jt.axis)
+            D[-1] = D[-1] @ jt.origin @ B
+            kinds.append(table.kind[j])
+            qidx.append(table.qidx[j])
+            mult.append(table.mult[j])
+            offset.append(table.offset[j])
+            D.append(B.T @ jt.post)
+        self.D = np.ascontiguousarray(np.stack(D)[:, :3, :])
+        # row 2: 1 where D[k + 1] rotates about x only (every DH link): a cheaper product
+        rx = [int(d[0, 0] == 1.0 and not d[0, 1:3].any() and not d[1:3, 0].any())
+              for d in self.D[1:]]
+        self.ints = np.array([kinds, qidx, rx], dtype=np.int64).reshape(3, -1)
+        self.floats = np.array([mult, offset], dtype=float).reshape(2, -1)
+
+
+def _numpy(table: FKTable, q: np.ndarray, sel: np.ndarray, out: np.ndarray) -> None:
+    f1, f2 = table.coefficients(q, sel)
+    M = table.M[sel]
+    L = M[:, 0] + f1[..., None, None] * M[:, 1] + f2[..., None, None] * M[:, 2]
+    for k, j in enumerate(sel):
+        np.matmul(out[:, table.parent[j]], L[:, k], out=out[:, j + 1])
+
+
+@functools.cache
+def _compiled():
+    """The numba kernels module, or None when numba is missing or KINLIB_NUMBA=0."""
+    if numba_disabled():
+        return None
+    try:
+        from . import _fk_numba
+    except ImportError:
+        return None
+    return _fk_numba
+
+
+PARALLEL_MIN = 4096  # below this, starting the threads costs more than it saves
+
+
+def run_chain(chain: ChainTable, table: FKTable, q: np.ndarray, sel: np.ndarray, *,
+              compiled: bool | None = None):
+    """Pose (N, 4, 4) at the end of the joint path ``sel`` (a chain from the root)."""
+    kernels = _compiled() if compiled is not False else None
+    if kernels is not None:
+        fn = kernels.chain_parallel if q.shape[0] >= PARALLEL_MIN else kernels.chain
+        return fn(q, chain.ints, chain.floats, chain.D)
+    frames = run(table, q, sel, compiled=False)
+    return frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
+
+
+def _jacobian_numpy(table: FKTable, joints, frames, q_cols: int, sel: np.ndarray):
+    """Reference Jacobian from the tree's frames (N, 1 + n, 4, 4) of the path ``sel``."""
+    N = frames.shape[0]
+    J = np.zeros((N, 6, q_cols))
+    if len(sel) == 0:
+        return J
+    p_end = frames[:, sel[-1] + 1, :3, 3]
+    for j in sel:
+        kind = table.kind[j]
+        if kind == 0:
+            continue
+        jt = joints[j]
+        G = frames[:, j + 1] @ np.linalg.inv(jt.post)  # origin @ motion(q): the joint frame
+        z = G[:, :3, :3] @ jt.axis
+        col, w = table.qidx[j], table.mult[j]
+        if kind == 1:
+            J[:, :3, col] += w * np.cross(z, p_end - G[:, :3, 3])
+            J[:, 3:, col] += w * z
+        else:
+            J[:, :3, col] += w * z
+    return J
+
+
+def run_chain_jacobian(chain: ChainTable, table: FKTable, joints, q: np.ndarray,
+                       sel: np.ndarray, *, compiled: bool | None = None):
+    """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the path ``sel``."""
+    kernels = _compiled() if compiled is not False else None
+    if kernels is not None:
+        fn = (kernels.chain_jacobian_parallel if q.shape[0] >= PARALLEL_MIN
+              else kernels.chain_jacobian)
+        return fn(q, chain.ints, chain.floats, chain.D, q.shape[1])
+    frames = run(table, q, sel, compiled=False)
+    T = frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
+    return T, _jacobian_numpy(table, joints, frames, q.shape[1], sel)
+
+
+def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None = None):
+    """Frames (N, 1 + n_joints, 4, 4) for q (N, dof); only frames of ``sel`` are filled.
+
+    Frame 0 is the root link (identity); frame ``j + 1`` is joint ``j``'s child link.
+    ``compiled=None`` uses the numba kernel when numba is available (``KINLIB_NUMBA=0``
+    turns it off); numba is imported on the first call, not with kinlib.
+    """
+    kernels = _compiled() if compiled is not False else None
+    if kernels is not None:
+        return kernels.tree(q, sel, table.ints, table.floats, table.M)
+    out = np.empty((q.shape[0], table.n + 1, 4, 4))
+    out[:, 0] = np.eye(4)
+    _numpy(table, q, sel, out)
+    return out
