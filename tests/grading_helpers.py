@@ -1,8 +1,14 @@
-"""Helpers of the grader tests: build submissions from a source notebook's own code."""
+"""Helpers of the grader tests: build submissions from a source notebook's own code, and
+judge the instructor's wrong versions of it in this process (:func:`judge_notebooks`)."""
 
+import ast
+import json
 from pathlib import Path
 
 import nbformat
+
+from kinlib.grade._sandbox import BLOCKED
+from kinlib.grade._trusted import judge_functions
 
 ROOT = Path(__file__).resolve().parents[1] / "assignments"
 
@@ -70,3 +76,34 @@ def misdiagnosed(results: list, table, unaffected=None) -> list:
                 check = by_function(r)[fn]
                 assert check["passed"] == check["total"], (fn, check["diagnoses"])
     return wrong
+
+
+def _sandbox_legal(source: str, where: str) -> None:
+    """The code of a test's submission imports nothing the sandbox would refuse (judged in
+    process it could, and a mistake could then pass here that fails in the sandbox)."""
+    for node in ast.walk(ast.parse(source)):
+        names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                 else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+        bad = [n for n in names if n.split(".")[0] in BLOCKED]
+        assert not bad, f"{where}: imports {bad}, which the sandbox blocks"
+
+
+def judge_notebooks(paths) -> list:
+    """What ``grade_many(paths)`` gives these notebooks (written by this file's helpers from
+    the solution and its known mistakes: the instructor's code, never a student's), judged
+    in this process by :func:`kinlib.grade._trusted.judge_functions`: the same cases, wire
+    format, judges and summary, without a student process per submission. The sandboxed
+    path is tested end to end for every assignment in test_grader.py."""
+    results = []
+    for path in paths:
+        nb = json.loads(Path(path).read_text())
+        namespace = {"__name__": "__main__", "display": lambda *a, **k: None}
+        for i, cell in enumerate(nb["cells"]):
+            if cell["cell_type"] != "code":
+                continue
+            source = "".join(cell["source"]) if isinstance(cell["source"], list) \
+                else cell["source"]
+            _sandbox_legal(source, f"{Path(path).name}, cell {i}")
+            exec(compile(source, f"<cell {i}>", "exec"), namespace)  # the tests' own code
+        results.append(judge_functions(namespace, nb["metadata"]["kinlib"]["assignment"]))
+    return results

@@ -16,6 +16,7 @@ import pytest
 import sympy as sp
 from grading_helpers import (
     by_function,
+    judge_notebooks,
     misdiagnosed,
     mistake_submissions,
     patched,
@@ -27,7 +28,6 @@ from scipy.linalg import expm
 from scipy.optimize import least_squares
 
 import kinlib as kl
-from kinlib.grade import grade_many
 from kinlib.grade.assignments import _limited_ik as L
 from kinlib.grade.assignments import _singular as G
 from kinlib.grade.assignments import _sj_symbolic as Q
@@ -443,7 +443,7 @@ def graded(tmp_path_factory):
     subs = mistake_submissions(tmp, NAME, _isolated(code), TABLE, _right_copies(code))
     alt = write_notebook(tmp / "alt.ipynb", _right_copies(code), patched(_isolated(code), *ALT),
                          assignment=NAME)
-    results = grade_many([*subs, alt], jobs=2)
+    results = judge_notebooks([*subs, alt])
     return results[:-1], by_function(results[-1])
 
 

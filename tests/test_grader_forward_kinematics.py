@@ -13,6 +13,7 @@ import pytest
 import sympy as sp
 from grading_helpers import (
     by_function,
+    judge_notebooks,
     misdiagnosed,
     mistake_submissions,
     patched,
@@ -22,7 +23,6 @@ from grading_helpers import (
 )
 
 import kinlib as kl
-from kinlib.grade import grade_many
 from kinlib.grade.assignments import forward_kinematics as F
 from kinlib.robots import autorob_test_robot, puma560
 
@@ -308,7 +308,7 @@ TABLE = (("dh_matrix", DH_MISTAKES), ("dh_symbolic", DHS_MISTAKES), ("fk_dh", FK
 def test_forward_kinematics_mistakes_are_diagnosed(tmp_path):
     right = solution_code(NAME) + "\n\n_dh = dh_matrix\n"
     code = patched(solution_code(NAME), ("T = T @ dh_matrix(", "T = T @ _dh("))
-    graded = grade_many(mistake_submissions(tmp_path, NAME, code, TABLE, right), jobs=4)
+    graded = judge_notebooks(mistake_submissions(tmp_path, NAME, code, TABLE, right))
     wrong = misdiagnosed(graded, TABLE)
     results = [by_function(r) for r in graded]
     assert not wrong, wrong
@@ -363,7 +363,7 @@ def test_more_stack_mistakes(tmp_path):
                    "                                 @ motion(joint, q.get(joint[\"name\"],"
                    " 0.0)))\n    return poses")), assignment=NAME),
     ]
-    a, b, c = (by_function(r)["fk_matrix_stack"] for r in grade_many(subs, jobs=3))
+    a, b, c = (by_function(r)["fk_matrix_stack"] for r in judge_notebooks(subs))
     assert top(a) == "transposed" and "the origin's and the joint motion's" in \
         a["diagnoses"][0]["message"]
     assert top(b) == "transposed" and "4×4" in b["diagnoses"][0]["message"]
@@ -400,7 +400,7 @@ def test_other_right_answers_are_accepted(tmp_path):
          "                                 @ motion(joint, q.get(joint[\"name\"], 0.0)))\n"
          "    return {k: v.tolist() for k, v in poses.items()}"))
     sub = write_notebook(tmp_path / "alt.ipynb", code, assignment=NAME)
-    result = by_function(grade_many([sub])[0])
+    result = by_function(judge_notebooks([sub])[0])
     for fn, check in result.items():
         assert check["passed"] == check["total"], (fn, check["diagnoses"])
 

@@ -11,6 +11,7 @@ import pytest
 import sympy as sp
 from grading_helpers import (
     by_function,
+    judge_notebooks,
     misdiagnosed,
     mistake_submissions,
     patched,
@@ -19,7 +20,6 @@ from grading_helpers import (
 )
 
 import kinlib as kl
-from kinlib.grade import grade_many
 from kinlib.grade.assignments import jacobian_ik as G
 from kinlib.robots import puma560, three_dof_arm
 
@@ -272,7 +272,7 @@ ALL = (("geometric_jacobian", JACOBIAN_MISTAKES), ("det_jacobian_2r", DET_MISTAK
 
 
 def test_jacobian_ik_mistakes_are_diagnosed(tmp_path):
-    graded = grade_many(mistake_submissions(tmp_path, NAME, solution_code(NAME), ALL), jobs=4)
+    graded = judge_notebooks(mistake_submissions(tmp_path, NAME, solution_code(NAME), ALL))
     wrong = misdiagnosed(graded, ALL)
     results = [by_function(r) for r in graded]
     assert not wrong, wrong
@@ -331,6 +331,6 @@ def test_other_right_answers_are_accepted(tmp_path):
                "                               / np.linalg.norm(w)])  # c"))
     subs = [write_notebook(tmp_path / f"alt{i}.ipynb", c, assignment=NAME)
             for i, c in enumerate((code, arccos))]
-    for result in grade_many(subs, jobs=2):
+    for result in judge_notebooks(subs):
         for fn, check in by_function(result).items():
             assert check["passed"] == check["total"], (fn, check["diagnoses"])

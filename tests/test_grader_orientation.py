@@ -14,6 +14,7 @@ import pytest
 import sympy as sp
 from grading_helpers import (
     by_function,
+    judge_notebooks,
     misdiagnosed,
     mistake_submissions,
     patched,
@@ -24,7 +25,7 @@ from grading_helpers import (
 from scipy.spatial.transform import Rotation, Slerp
 
 import kinlib as kl
-from kinlib.grade import grade_many
+from kinlib.grade import grade
 from kinlib.grade._wire import decode, encode
 from kinlib.grade.assignments import _euler_det as ED
 from kinlib.grade.assignments import _interpolation as I
@@ -466,12 +467,30 @@ def graded(tmp_path_factory):
     right = code + "\n\n_slerp = slerp\n"  # the decoupled ScLERP's slerp is a right copy
     subs = mistake_submissions(tmp, NAME, code, TABLE, right)
     subs.append(write_notebook(tmp / "alt.ipynb", alternatives(code), assignment=NAME))
-    results = grade_many(subs, jobs=2)
-    return results[:-1], results[-1]
+    results = judge_notebooks(subs)
+    return results[:-1], results[-1], subs
+
+
+def _verdicts(result: dict) -> list:
+    return [(c["function"], c["score"], c["passed"], c["total"],
+             [(d["key"], d["count"], d["message"]) for d in c["diagnoses"]],
+             c["examples"]) for c in result["checks"]]
+
+
+def test_judged_in_process_is_what_the_sandbox_gives(graded):
+    """The mistake tables are judged in this process (grading_helpers.judge_notebooks);
+    two of their submissions, graded for real in the sandbox, get the very same result:
+    every score, count, diagnosis, message and example."""
+    mistakes, _, subs = graded
+    for k in (0, 5):
+        sandboxed = grade(subs[k])
+        assert sandboxed["sandbox"] and mistakes[k]["sandbox"] is None
+        assert sandboxed["score"] == mistakes[k]["score"] < sandboxed["max_score"]
+        assert _verdicts(sandboxed) == _verdicts(mistakes[k])
 
 
 def test_orientation_mistakes_are_diagnosed(graded):
-    mistakes, _ = graded
+    mistakes, _, _ = graded
     wrong = misdiagnosed(mistakes, TABLE)
     assert not wrong, wrong
     results = [by_function(r) for r in mistakes]
@@ -497,6 +516,6 @@ def test_orientation_mistakes_are_diagnosed(graded):
 
 
 def test_other_right_answers_are_accepted(graded):
-    _, alt = graded
+    _, alt, _ = graded
     assert alt["score"] == alt["max_score"], [(c["function"], c["diagnoses"])
                                               for c in alt["checks"] if c["diagnoses"]]

@@ -16,6 +16,7 @@ import pytest
 import sympy as sp
 from grading_helpers import (
     by_function,
+    judge_notebooks,
     misdiagnosed,
     mistake_submissions,
     patched,
@@ -24,7 +25,6 @@ from grading_helpers import (
 )
 
 import kinlib as kl
-from kinlib.grade import grade_many
 from kinlib.grade.assignments import planning as P
 from kinlib.planning.cspace import NEIGHBOURS
 
@@ -326,7 +326,7 @@ TABLE = (("neighbors", NEIGHBOR_MISTAKES), ("metric_2r", METRIC_MISTAKES),
 def test_planning_mistakes_are_diagnosed(tmp_path):
     right = solution_code(NAME) + "\n\n_nb, _ec = neighbors, edge_cost\n"
     code = _isolated(solution_code(NAME))
-    graded = grade_many(mistake_submissions(tmp_path, NAME, code, TABLE, right), jobs=4)
+    graded = judge_notebooks(mistake_submissions(tmp_path, NAME, code, TABLE, right))
     # the right copies keep astar_2r right, but its own mistakes spoil nothing else
     wrong = misdiagnosed(graded, TABLE, unaffected=("neighbors", "edge_cost"))
     results = [by_function(r) for r in graded]
@@ -359,7 +359,7 @@ def test_other_right_answers_are_accepted(tmp_path):
         ("def heuristic(c):\n", "def heuristic(c):\n        return 0.0\n"),
         ("for v in _nb(u, free.shape):", "for v in _nb(u, free.shape)[::-1]:"),
         ("return path[::-1]", "return np.array(path[::-1])"))
-    result = by_function(grade_many([write_notebook(tmp_path / "alt.ipynb", right, code,
+    result = by_function(judge_notebooks([write_notebook(tmp_path / "alt.ipynb", right, code,
                                                     assignment=NAME)])[0])
     for fn, check in result.items():
         assert check["passed"] == check["total"], (fn, check["diagnoses"])

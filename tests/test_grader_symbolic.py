@@ -11,10 +11,9 @@ import json
 import numpy as np
 import pytest
 import sympy as sp
-from grading_helpers import ROOT, by_function, patched, top, write_notebook
+from grading_helpers import ROOT, by_function, judge_notebooks, patched, top, write_notebook
 
 import kinlib as kl
-from kinlib.grade import grade_many
 from kinlib.grade._symbolic import _exact, _Points, sym_tree, symbolic_judge
 from kinlib.grade._wire import MAX_SYM_NODES, Odd, Sym, WireError, decode, dumps, encode, loads
 
@@ -249,7 +248,7 @@ def test_the_zyx_derivation_graded_for_real(tmp_path):
                                    assignment="01_rotations"))
     alt = patched(code, (ZYX, "return sp.simplify(Rz @ Ry @ Rx).tolist()"))
     subs.append(write_notebook(tmp_path / "alt.ipynb", head, alt, assignment="01_rotations"))
-    results = [by_function(r)["euler_zyx_symbolic"] for r in grade_many(subs, jobs=2)]
+    results = [by_function(r)["euler_zyx_symbolic"] for r in judge_notebooks(subs)]
     for (_, key), check in zip(MISTAKES_01, results, strict=False):
         assert check["passed"] < check["total"] and top(check) == key, (key, check["diagnoses"])
     assert "alpha and gamma" in results[3]["diagnoses"][0]["message"]
