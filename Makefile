@@ -17,7 +17,7 @@ STAMP  := $(VENV)/.kinlib-installed
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[lab,dev,fast,grade]'
+	$(BIN)/python -m pip install --quiet -e '.[lab,course,dev,fast]'
 	touch $(STAMP)
 
 venv: $(STAMP)

@@ -21,7 +21,10 @@ an answer, a derivation that is an exercise's solution. It is left out of the st
 edition, and no other cell may read a name it sets.
 
 Outputs and execution counts are dropped. ``--check`` writes nothing and exits 1 if an
-edition is missing or stale.
+edition is missing or stale. The folders are found under ``--root`` (default: the current
+directory, so ``make release`` runs it from the repository's root); exit status 2 when there
+is nothing to release there, a notebook is refused, or the course's tools are not installed
+(``pip install 'kinlib[course]'``: nbformat, nbclient, nbconvert; see :func:`course_import`).
 
 >>> print(release_source('''def f(x):
 ...     \"\"\"Twice x.\"\"\"
@@ -42,6 +45,7 @@ from __future__ import annotations
 
 import argparse
 import ast
+import importlib
 import re
 import sys
 from pathlib import Path
@@ -49,14 +53,39 @@ from pathlib import Path
 from .errors import KinlibError
 
 __all__ = ["release_source", "release_notebook", "assigned_names", "used_names", "main",
-           "BEGIN", "END", "EDITIONS", "SOLUTION_TAG"]
+           "course_import", "BEGIN", "END", "EDITIONS", "SOLUTION_TAG", "COURSE_EXTRA"]
 
 BEGIN = "### BEGIN SOLUTION"
 END = "### END SOLUTION"
 SOLUTION_TAG = "solution"  # a cell with this tag is in the instructor edition only
-_ROOT = Path(__file__).resolve().parents[1]
-#: (source folder, student edition folder), relative to the repository
+#: (source folder, student edition folder), relative to the repository (``--root``)
 EDITIONS = (("assignments/source", "assignments/release"), ("instructor", "notebooks"))
+#: what installs the course's tools (kinlib.assign, kinlib.grade, kinlib.site) beside kinlib
+COURSE_EXTRA = "pip install 'kinlib[course]'"
+#: the distributions of the course's tools, as pyproject.toml's ``course`` extra lists them
+COURSE_MODULES = ("nbformat", "nbclient", "nbconvert")
+
+
+def course_import(name: str, tool: str = "the course's tools"):
+    """The module ``name``, one of the course tools' own dependencies, imported; a
+    :class:`KinlibError` naming the extra that installs it when it cannot be imported.
+
+    kinlib's runtime does not need nbformat, nbclient or nbconvert; ``kinlib.assign``,
+    ``kinlib.site`` and the grader's old-notebook converter do.
+
+    >>> course_import("json").__name__
+    'json'
+    >>> course_import("no_such_module_here", "python -m kinlib.site")
+    Traceback (most recent call last):
+    ...
+    kinlib.errors.KinlibError: python -m kinlib.site needs no_such_module_here, which is not \
+installed (No module named 'no_such_module_here'): pip install 'kinlib[course]'
+    """
+    try:
+        return importlib.import_module(name)
+    except ImportError as exc:
+        raise KinlibError(f"{tool} needs {name}, which is not installed ({exc}): "
+                          f"{COURSE_EXTRA}") from None
 
 
 def _tree(code: str, where: str) -> ast.Module:
@@ -168,22 +197,28 @@ def _pairs(root: Path):
         for s in sorted((root / src).glob("*.ipynb")):
             pairs.append((s, root / dst / s.name))
     if not pairs:
-        raise KinlibError(f"no source notebooks in {root} "
-                          f"({', '.join(src + '/' for src, _ in EDITIONS)})")
+        raise KinlibError(f"no source notebooks in {root.resolve()} (expected them in "
+                          f"{' or '.join(src + '/' for src, _ in EDITIONS)}): run it from the "
+                          "course repository's root or give that folder as --root")
     return pairs
 
 
 def main(argv=None) -> int:
-    import nbformat
-
+    """The command line (see the module's text); 0 done, 1 stale (``--check``). Bad input
+    (nothing to release, a notebook refused, nbformat missing) raises :class:`KinlibError`;
+    ``python -m kinlib.assign`` prints it and exits 2."""
     p = argparse.ArgumentParser(prog="python -m kinlib.assign", description=__doc__.split(
         "\n\n")[0])
-    p.add_argument("--root", type=Path, default=_ROOT, help="the repository")
+    p.add_argument("--root", type=Path, default=Path("."),
+                   help="the course repository holding instructor/ and assignments/source/ "
+                        "(default: the current directory)")
     p.add_argument("--check", action="store_true",
                    help="write nothing; exit 1 if a student edition is missing or out of date")
     args = p.parse_args(argv)
+    pairs = _pairs(args.root)
+    nbformat = course_import("nbformat", "python -m kinlib.assign")
     stale = []
-    for src, dst in _pairs(args.root):
+    for src, dst in pairs:
         try:
             text = nbformat.writes(release_notebook(nbformat.read(src, as_version=4))) + "\n"
         except KinlibError as exc:
@@ -202,5 +237,13 @@ def main(argv=None) -> int:
     return 0
 
 
+def _cli() -> int:
+    try:
+        return main()
+    except KinlibError as exc:
+        print(f"python -m kinlib.assign: {exc}", file=sys.stderr)
+        return 2
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(_cli())

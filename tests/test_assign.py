@@ -68,3 +68,52 @@ def test_a_cell_for_the_instructor_only_is_left_out():
     nb.cells.append(nbformat.v4.new_code_cell("print(c2_by_hand)"))
     with pytest.raises(KinlibError, match=r"instructor only .* reads c2_by_hand"):
         release_notebook(nb)
+
+
+# -- the command line: its folders, its dependencies -----------------------------------------
+
+def _python_m(module: str, *args, poison=(), cwd=None):
+    """``python -m module args`` in a fresh interpreter where the modules ``poison`` cannot be
+    imported (``sys.modules[name] = None``: what a missing package looks like)."""
+    import subprocess
+    import sys
+
+    code = ("import runpy, sys\n"
+            f"for name in {list(poison)!r}:\n    sys.modules[name] = None\n"
+            f"sys.argv = [{module!r}, *{list(args)!r}]\n"
+            f"runpy.run_module({module!r}, run_name='__main__', alter_sys=True)\n")
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          cwd=cwd, timeout=300)
+
+
+def test_without_nbformat_the_tool_names_the_course_extra(tmp_path):
+    (tmp_path / "instructor").mkdir()
+    nbformat.write(notebook(TOP, 'check("01.1", R_try)'), tmp_path / "instructor" / "01.ipynb")
+    out = _python_m("kinlib.assign", "--check", poison=["nbformat"], cwd=tmp_path)
+    assert out.returncode == 2, out.stdout + out.stderr
+    assert "Traceback" not in out.stderr
+    assert "python -m kinlib.assign needs nbformat" in out.stderr
+    assert "pip install 'kinlib[course]'" in out.stderr
+    control = _python_m("kinlib.assign", "--check", cwd=tmp_path)  # nbformat there: stale
+    assert control.returncode == 1 and "notebooks/01.ipynb" in control.stderr, control
+    empty = _python_m("kinlib.assign", cwd=tmp_path / "instructor")  # nothing to release
+    assert empty.returncode == 2 and "Traceback" not in empty.stderr, empty
+    assert "no source notebooks in" in empty.stderr and "--root" in empty.stderr
+
+
+def test_the_folders_are_the_current_directory_s_unless_root_is_given(tmp_path, monkeypatch):
+    from kinlib.assign import main
+
+    source = tmp_path / "course" / "assignments" / "source"
+    source.mkdir(parents=True)
+    nbformat.write(notebook(TOP, 'check("01.1", R_try)'), source / "01_x.ipynb")
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(KinlibError, match=r"no source notebooks in .*instructor/.*--root"):
+        main(["--check"])
+    assert main(["--root", "course", "--check"]) == 1  # stale: no release yet
+    monkeypatch.chdir(tmp_path / "course")
+    assert main([]) == 0
+    released = nbformat.read(tmp_path / "course" / "assignments" / "release" / "01_x.ipynb",
+                             as_version=4)
+    assert released.cells[0].source == "R_try = ...  # your answer"
+    assert main(["--check"]) == 0

@@ -93,7 +93,8 @@ def test_both_editions_hold_the_same_notebooks():
 
 
 def test_student_edition_is_generated_and_current():
-    assert assign_main(["--check"]) == 0, "run `python -m kinlib.assign` (make release)"
+    assert assign_main(["--root", str(ROOT), "--check"]) == 0, \
+        "run `python -m kinlib.assign` (make release)"
 
 
 @pytest.mark.parametrize("name", NAMES)

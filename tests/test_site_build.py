@@ -189,3 +189,46 @@ def test_a_small_site_is_built_from_scratch_and_rebuilt(tmp_path):
     (out / "stale.html").write_text("old")
     build_site(out, folder, log=lambda _: None)  # a previous build is replaced
     assert not (out / "stale.html").exists() and (out / "01_small.html").exists()
+
+
+def test_without_the_course_tools_the_builder_names_the_extra(tmp_path, monkeypatch):
+    import subprocess
+    import sys
+
+    code = ("import runpy, sys\nsys.modules['nbclient'] = None\n"
+            "sys.argv = ['kinlib.site', '--out', 'out']\n"
+            "runpy.run_module('kinlib.site', run_name='__main__', alter_sys=True)\n")
+    (tmp_path / "notebooks").mkdir()
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=tmp_path, timeout=300)
+    assert out.returncode == 2, out.stdout + out.stderr
+    assert "Traceback" not in out.stderr
+    assert "python -m kinlib.site needs nbclient" in out.stderr
+    assert "pip install 'kinlib[course]'" in out.stderr
+    assert not (tmp_path / "out").exists()
+    monkeypatch.setitem(sys.modules, "nbformat", None)  # and from Python
+    with pytest.raises(KinlibError, match=r"kinlib\.site needs nbformat.*kinlib\[course\]"):
+        outline(NOTEBOOKS)
+
+
+def test_the_notebooks_default_to_the_current_directory_s(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(KinlibError, match=r"no folder notebooks/ in .*--notebooks"):
+        outline()
+    with pytest.raises(KinlibError, match=r"no folder notebooks/ in .*--notebooks"):
+        build_site(tmp_path / "out")
+    assert not (tmp_path / "out").exists()
+    (tmp_path / "notebooks").mkdir()
+    _notebook(tmp_path / "notebooks", "01_here",
+              [nbformat.v4.new_markdown_cell("# 01 · Here\n\n**Learning goals.** 1. this")])
+    assert [(p.name, p.title) for p in outline()] == [("01_here", "Here")]
+
+
+def test_the_page_template_ships_with_the_package():
+    from importlib import resources
+
+    import kinlib.site as site
+
+    template = resources.files("kinlib.site").joinpath("templates", "kinlib_page.html.j2")
+    assert template.is_file() and "{%" in template.read_text(encoding="utf-8")
+    assert Path(str(site.TEMPLATES)) == Path(str(template)).parent

@@ -127,16 +127,36 @@ def _numpy(table: FKTable, q: np.ndarray, sel: np.ndarray, out: np.ndarray) -> N
         np.matmul(out[:, table.parent[j]], L[:, k], out=out[:, j + 1])
 
 
+def _load_kernels(module: str):
+    """``kinlib.<module>`` (numba kernels), or None: numba is missing, or building the
+    kernels failed in any way (a numba or Python the kernels do not support: on Python 3.10
+    ``CodeType.replace`` has no ``co_qualname``). A failure other than a missing numba is
+    reported once, as a RuntimeWarning naming it; the numpy path is then used."""
+    import importlib
+
+    try:
+        return importlib.import_module(f"{__package__}.{module}")
+    except ImportError as exc:
+        if exc.name == "numba":
+            return None
+        reason = exc
+    except Exception as exc:  # numba there, but the kernels cannot be built with it
+        reason = exc
+    import warnings
+
+    warnings.warn(f"kinlib: the compiled kernels (kinlib.{module}) could not be built, so "
+                  f"the numpy path is used ({type(reason).__name__}: {reason}); set "
+                  "KINLIB_NUMBA=0 to skip them", RuntimeWarning, stacklevel=3)
+    return None
+
+
 @functools.cache
 def _compiled():
-    """The numba kernels module, or None when numba is missing or KINLIB_NUMBA=0."""
+    """The numba kernels module, or None when numba is missing, KINLIB_NUMBA=0, or the
+    kernels cannot be built here (see :func:`_load_kernels`)."""
     if numba_disabled():
         return None
-    try:
-        from . import _fk_numba
-    except ImportError:
-        return None
-    return _fk_numba
+    return _load_kernels("_fk_numba")
 
 
 PARALLEL_MIN = 4096  # below this, starting the threads costs more than it saves

@@ -23,6 +23,7 @@ simply ends with ``success=False`` after its bounded number of steps.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -209,14 +210,14 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
                     shape(iters))
 
 
+@functools.cache
 def _compiled_ik():
-    from ._fk import _compiled
+    """The compiled IK loop, or None (as for the FK kernels: :func:`kinlib._fk._compiled`)."""
+    from ._fk import _compiled, _load_kernels
 
     if _compiled() is None:
         return None
-    from . import _ik_numba
-
-    return _ik_numba
+    return _load_kernels("_ik_numba")
 
 
 def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, max_iter):

@@ -1,8 +1,9 @@
 """The course as a static web site: ``python -m kinlib.site`` (``make site``).
 
-Every notebook in ``notebooks/`` is executed in its own kernel and exported to one HTML page
-in ``site/``, next to an ``index.html`` holding the course outline (each notebook's title and
-learning goals, in the two parts of the course) with links. The site works offline, opened
+Every notebook in ``notebooks/`` (of the current directory, or the folder given) is
+executed in its own kernel and exported to one HTML page in ``site/``, next to an
+``index.html`` holding the course outline (each notebook's title and learning goals, in the
+two parts of the course) with links. The site works offline, opened
 straight from the files:
 
 - mathematics: MathJax 3's single-file TeX-to-SVG build (no web fonts, which browsers refuse
@@ -16,6 +17,10 @@ straight from the files:
 - ipywidgets: drawn from their saved state as plain HTML (:mod:`kinlib.site._widgets`).
 
 A cell that raises stops the build with the notebook's name and the cell's number.
+
+It needs the course's tools, ``pip install 'kinlib[course]'`` (nbformat, nbclient,
+nbconvert, a Python kernel); without them its functions raise :class:`KinlibError` naming
+that extra. The page template ships with the package (``kinlib/site/templates``).
 """
 
 from __future__ import annotations
@@ -27,18 +32,22 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from contextlib import nullcontext
 from dataclasses import dataclass
+from importlib import resources
 from itertools import repeat
 from multiprocessing import get_context
 from pathlib import Path
 
+from ..assign import course_import
 from ..errors import KinlibError
 from ._widgets import freeze_widgets, with_viewer
 
 __all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "export_page",
            "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
 
-ROOT = Path(__file__).resolve().parents[2]
-TEMPLATES = Path(__file__).resolve().parent / "templates"
+#: the page template's folder, shipped with the package
+TEMPLATES = resources.files(__package__) / "templates"
+#: the default folder of the notebooks, relative to the current directory
+NOTEBOOKS = Path("notebooks")
 MARKER = ".kinlib-site"  # a directory holding it may be emptied by the next build
 #: the two parts of the course: (title, first notebook number, last)
 PARTS = (("Part 1 · Spatial descriptions and orientation", 1, 7),
@@ -47,7 +56,8 @@ PARTS = (("Part 1 · Spatial descriptions and orientation", 1, 7),
 MATHJAX_VERSION = "3.2.2"
 #: sha256 of MathJax 3.2.2's es5/tex-svg-full.js (TeX input, SVG output: no web fonts)
 MATHJAX_SHA256 = "a4354ff94fd868aea0cc6eaaa79a57fda0588646fc46ee3700a349ee0a11cbe6"
-MATHJAX_FILE = ROOT / "build" / f"mathjax-{MATHJAX_VERSION}" / "tex-svg-full.js"
+#: where :func:`ensure_mathjax` keeps it by default, relative to the current directory
+MATHJAX_FILE = Path("build") / f"mathjax-{MATHJAX_VERSION}" / "tex-svg-full.js"
 
 MATHJAX_HEAD = r"""<script>
 window.MathJax = {
@@ -116,11 +126,20 @@ def _markdown_cells(nb) -> list[str]:
     return [c.source for c in nb.cells if c.cell_type == "markdown"]
 
 
-def outline(notebooks: Path | str | None = None) -> list[PageInfo]:
-    """The course's notebooks (``NN_name.ipynb``) in order, with titles and goals."""
-    import nbformat
+def _folder(notebooks: Path | str | None) -> Path:
+    folder = Path(notebooks) if notebooks is not None else NOTEBOOKS
+    if notebooks is None and not folder.is_dir():
+        raise KinlibError(f"no folder {folder}/ in {Path.cwd()}: expected the course's "
+                          "notebooks there (run from the course repository's root), or give "
+                          "their folder (notebooks=..., --notebooks FOLDER)")
+    return folder
 
-    folder = Path(notebooks) if notebooks is not None else ROOT / "notebooks"
+
+def outline(notebooks: Path | str | None = None) -> list[PageInfo]:
+    """The course's notebooks (``NN_name.ipynb``) in order, with titles and goals;
+    ``notebooks``: their folder (default ``notebooks/`` of the current directory)."""
+    nbformat = course_import("nbformat", "kinlib.site")
+    folder = _folder(notebooks)
     pages = []
     for path in sorted(folder.glob("[0-9][0-9]_*.ipynb")):
         nb = nbformat.read(path, as_version=4)
@@ -144,7 +163,8 @@ def execute_notebook(path: Path | str, timeout: float = 600.0):
     """Run the notebook at ``path`` in a fresh ``python3`` kernel (working directory: its
     folder) and return the executed node, widget state included. A cell that raises becomes a
     :class:`KinlibError` naming the notebook and the cell."""
-    import nbformat
+    nbformat = course_import("nbformat", "kinlib.site")
+    course_import("nbclient", "kinlib.site")
     from nbclient import NotebookClient
     from nbclient.exceptions import CellExecutionError, CellTimeoutError
 
@@ -177,10 +197,13 @@ def _nav(pages: list[PageInfo], here: int) -> str:
 
 def export_page(nb, page: PageInfo, pages: list[PageInfo]) -> str:
     """The executed notebook ``nb`` as one offline HTML page of the site."""
-    from nbconvert import HTMLExporter
-
+    HTMLExporter = course_import("nbconvert", "kinlib.site").HTMLExporter
+    templates = Path(str(TEMPLATES))
+    if not templates.is_dir():
+        raise KinlibError(f"kinlib.site: its page template is not a folder on disk "
+                          f"({TEMPLATES}): install kinlib from a wheel or a checkout, not a zip")
     freeze_widgets(nb)
-    exporter = HTMLExporter(template_name="lab", extra_template_paths=[str(TEMPLATES)])
+    exporter = HTMLExporter(template_name="lab", extra_template_paths=[str(templates)])
     exporter.template_file = "kinlib_page.html.j2"
     here = [p.name for p in pages].index(page.name)
     resources = {"metadata": {"name": f"{page.number:02d} · {page.title} — kinlib"},
@@ -225,7 +248,8 @@ def _build_one(path: str, out: str, pages: list[PageInfo], timeout: float) -> tu
 
 def ensure_mathjax(path: Path | str | None = None) -> Path:
     """MathJax's single-file TeX-to-SVG build, fetched once with ``npm pack`` from the npm
-    registry into ``build/`` (pinned version, checked against its sha256)."""
+    registry into ``build/`` of the current directory (:data:`MATHJAX_FILE`; pinned version,
+    checked against its sha256); ``path``: a file to use instead, as it is."""
     import hashlib
     import subprocess
     import tarfile
@@ -281,6 +305,7 @@ def _copy_viewer(out: Path) -> None:
 
 def index_html(pages: list[PageInfo]) -> str:
     """The outline page: the two parts, each notebook's title, link and learning goals."""
+    course_import("nbconvert", "kinlib.site")
     from nbconvert.filters.markdown import markdown2html_mistune
 
     parts = []
@@ -324,11 +349,12 @@ def build_site(out: Path | str = "site", notebooks: Path | str | None = None, *,
 
     ``jobs`` notebooks run at once (each in its own process and kernel). ``only`` restricts
     the build to those notebook names (the outline and navigation still list them all).
+    ``notebooks``: their folder (default ``notebooks/`` of the current directory).
     ``mathjax``: a MathJax 3 ``tex-svg-full.js`` to use (default: :func:`ensure_mathjax`).
     ``out`` is emptied first if it holds a previous build (a ``.kinlib-site`` marker); an
     existing folder without one is refused rather than overwritten.
     """
-    folder = Path(notebooks) if notebooks is not None else ROOT / "notebooks"
+    folder = _folder(notebooks)
     out = Path(out)
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise KinlibError(f"build_site: jobs must be a positive integer, got {jobs!r}")

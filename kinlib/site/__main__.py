@@ -1,7 +1,13 @@
-"""``python -m kinlib.site [--out site] [--jobs N] [--only NAME ...]``: build the course site.
+"""``python -m kinlib.site [--out site] [--notebooks notebooks] [--jobs N] [--only NAME ...]``:
+build the course site.
+
+Run from the course repository's root (``make site``), or give the folders: ``--notebooks``
+(default ``notebooks/``), ``--out`` (default ``site/``) and ``--mathjax`` (default: fetched
+once with npm into ``build/``), all relative to the current directory.
 
 Exit status 0 when every page was written, 1 when a notebook failed (its name and cell are
-printed), 2 for bad arguments.
+printed), 2 for bad arguments (a missing notebooks folder among them) or when the course's
+tools are not installed (``pip install 'kinlib[course]'``).
 """
 
 from __future__ import annotations
@@ -11,15 +17,19 @@ import sys
 import time
 from pathlib import Path
 
+from ..assign import COURSE_MODULES, course_import
 from ..errors import KinlibError
-from . import ROOT, build_site
+from . import NOTEBOOKS, build_site
+
+PROG = "python -m kinlib.site"
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m kinlib.site", description=__doc__)
+    parser = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", default="site", help="output folder (default: site)")
-    parser.add_argument("--notebooks", default=str(ROOT / "notebooks"),
-                        help="folder of NN_name.ipynb notebooks (default: the course's)")
+    parser.add_argument("--notebooks", default=None,
+                        help=f"folder of NN_name.ipynb notebooks (default: {NOTEBOOKS}/ of "
+                             "the current directory)")
     parser.add_argument("--jobs", "-j", type=int, default=1,
                         help="notebooks executed at once (default 1)")
     parser.add_argument("--timeout", type=float, default=600.0,
@@ -29,10 +39,21 @@ def main(argv=None) -> int:
     parser.add_argument("--mathjax", help="a MathJax 3 tex-svg-full.js to use (default: "
                         "fetched once with npm into build/)")
     args = parser.parse_args(argv)
+    notebooks = Path(args.notebooks) if args.notebooks is not None else NOTEBOOKS
+    if not notebooks.is_dir():
+        which = "--notebooks" if args.notebooks is not None else f"the default {NOTEBOOKS}/"
+        parser.error(f"{which}: no folder {notebooks} in {Path.cwd()}; run from the course "
+                     "repository's root or give the notebooks' folder with --notebooks")
+    try:
+        for name in COURSE_MODULES:
+            course_import(name, PROG)
+    except KinlibError as exc:
+        print(f"{PROG}: {exc}", file=sys.stderr)
+        return 2
     start = time.perf_counter()
     print(f"building the course site in {Path(args.out).resolve()}")
     try:
-        seconds = build_site(args.out, args.notebooks, jobs=args.jobs, timeout=args.timeout,
+        seconds = build_site(args.out, notebooks, jobs=args.jobs, timeout=args.timeout,
                              only=args.only, mathjax=args.mathjax)
     except KinlibError as exc:
         print(f"site build failed: {exc}", file=sys.stderr)
