@@ -116,4 +116,12 @@ def kernels():
         import numba
     except ImportError:
         return None
-    return _build(numba.njit)
+    try:
+        return _build(numba.njit)
+    except Exception as exc:  # a numba these kernels do not support
+        import warnings
+
+        warnings.warn(f"kinlib: the compiled conversions could not be built, so the numpy "
+                      f"path is used ({type(exc).__name__}: {exc}); set KINLIB_NUMBA=0 to "
+                      "skip them", RuntimeWarning, stacklevel=2)
+        return None

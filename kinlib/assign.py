@@ -24,7 +24,8 @@ Outputs and execution counts are dropped. ``--check`` writes nothing and exits 1
 edition is missing or stale. The folders are found under ``--root`` (default: the current
 directory, so ``make release`` runs it from the repository's root); exit status 2 when there
 is nothing to release there, a notebook is refused, or the course's tools are not installed
-(``pip install 'kinlib[course]'``: nbformat, nbclient, nbconvert; see :func:`course_import`).
+(``pip install 'kinlib[course]'``: nbformat, nbclient, nbconvert; see
+:func:`kinlib._optional.course_import`).
 
 >>> print(release_source('''def f(x):
 ...     \"\"\"Twice x.\"\"\"
@@ -45,15 +46,15 @@ from __future__ import annotations
 
 import argparse
 import ast
-import importlib
 import re
 import sys
 from pathlib import Path
 
+from ._optional import course_import
 from .errors import KinlibError
 
 __all__ = ["release_source", "release_notebook", "assigned_names", "used_names", "main",
-           "course_import", "BEGIN", "END", "EDITIONS", "SOLUTION_TAG", "COURSE_EXTRA"]
+           "BEGIN", "END", "EDITIONS", "SOLUTION_TAG"]
 
 BEGIN = "### BEGIN SOLUTION"
 END = "### END SOLUTION"
@@ -61,31 +62,7 @@ SOLUTION_TAG = "solution"  # a cell with this tag is in the instructor edition o
 #: (source folder, student edition folder), relative to the repository (``--root``)
 EDITIONS = (("assignments/source", "assignments/release"), ("instructor", "notebooks"))
 #: what installs the course's tools (kinlib.assign, kinlib.grade, kinlib.site) beside kinlib
-COURSE_EXTRA = "pip install 'kinlib[course]'"
 #: the distributions of the course's tools, as pyproject.toml's ``course`` extra lists them
-COURSE_MODULES = ("nbformat", "nbclient", "nbconvert")
-
-
-def course_import(name: str, tool: str = "the course's tools"):
-    """The module ``name``, one of the course tools' own dependencies, imported; a
-    :class:`KinlibError` naming the extra that installs it when it cannot be imported.
-
-    kinlib's runtime does not need nbformat, nbclient or nbconvert; ``kinlib.assign``,
-    ``kinlib.site`` and the grader's old-notebook converter do.
-
-    >>> course_import("json").__name__
-    'json'
-    >>> course_import("no_such_module_here", "python -m kinlib.site")
-    Traceback (most recent call last):
-    ...
-    kinlib.errors.KinlibError: python -m kinlib.site needs no_such_module_here, which is not \
-installed (No module named 'no_such_module_here'): pip install 'kinlib[course]'
-    """
-    try:
-        return importlib.import_module(name)
-    except ImportError as exc:
-        raise KinlibError(f"{tool} needs {name}, which is not installed ({exc}): "
-                          f"{COURSE_EXTRA}") from None
 
 
 def _tree(code: str, where: str) -> ast.Module:

@@ -183,7 +183,7 @@ if "numba" in BROKEN:
     sys.modules["numba"] = None  # numba not installed: no warning
 warnings.simplefilter("error")  # any other warning fails the run
 import kinlib as kl
-from kinlib import _fk, ik
+from kinlib.kinematics import _fk, ik
 from kinlib.robots import planar_2r, puma560
 from kinlib.robots.puma560 import PUMA560_TABLE
 
@@ -214,8 +214,8 @@ print(json.dumps({"warnings": [str(w.message) for w in caught],
 
 
 @pytest.mark.parametrize("broken, fk, ik, warned", [
-    ("kinlib._fk_numba", False, False, "kinlib._fk_numba"),
-    ("kinlib._ik_numba", True, False, "kinlib._ik_numba"),
+    ("kinlib.kinematics._fk_numba", False, False, "kinlib.kinematics._fk_numba"),
+    ("kinlib.kinematics._ik_numba", True, False, "kinlib.kinematics._ik_numba"),
     ("numba", False, False, None),
 ])
 def test_kernels_that_cannot_be_built_fall_back_to_numpy(broken, fk, ik, warned, tmp_path):

@@ -97,8 +97,10 @@ def _read(path: Path) -> dict:
                           f"{type(exc).__name__}: {str(exc)[:200]}") from None
     if isinstance(data, dict) and isinstance(data.get("nbformat"), int) \
             and data["nbformat"] < 4 and "worksheets" in data:
-        import nbformat  # an old notebook: nbformat's converter
+        from .._optional import course_import  # an old notebook: nbformat's converter
 
+        nbformat = course_import("nbformat", f"{path}: an old notebook (format "
+                                             f"{data['nbformat']}), to be converted,")
         try:
             data = json.loads(nbformat.writes(nbformat.reads(json.dumps(data), as_version=4)))
         except Exception as exc:

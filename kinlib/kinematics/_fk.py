@@ -144,7 +144,7 @@ def _load_kernels(module: str):
         reason = exc
     import warnings
 
-    warnings.warn(f"kinlib: the compiled kernels (kinlib.{module}) could not be built, so "
+    warnings.warn(f"kinlib: the compiled kernels ({__package__}.{module}) could not be built, so "
                   f"the numpy path is used ({type(reason).__name__}: {reason}); set "
                   "KINLIB_NUMBA=0 to skip them", RuntimeWarning, stacklevel=3)
     return None

@@ -212,7 +212,8 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
 
 @functools.cache
 def _compiled_ik():
-    """The compiled IK loop, or None (as for the FK kernels: :func:`kinlib._fk._compiled`)."""
+    """The compiled IK loop, or None (as for the FK kernels:
+    :func:`kinlib.kinematics._fk._compiled`)."""
     from ._fk import _compiled, _load_kernels
 
     if _compiled() is None:

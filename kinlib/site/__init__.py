@@ -37,7 +37,7 @@ from itertools import repeat
 from multiprocessing import get_context
 from pathlib import Path
 
-from ..assign import course_import
+from .._optional import course_import
 from ..errors import KinlibError
 from ._widgets import freeze_widgets, with_viewer
 

@@ -17,7 +17,7 @@ import sys
 import time
 from pathlib import Path
 
-from ..assign import COURSE_MODULES, course_import
+from .._optional import COURSE_MODULES, course_import
 from ..errors import KinlibError
 from . import NOTEBOOKS, build_site
 

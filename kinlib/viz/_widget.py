@@ -52,7 +52,6 @@ with warnings.catch_warnings():
 __all__ = ["Scene", "SceneNode", "MeshcatBundle", "bundle", "bundle_source", "scene_js",
            "scene_holder", "static_page", "inline_viewer", "close_tree", "check_height"]
 
-_HERE = Path(__file__).resolve().parent
 BUNDLE_FILE = Path(meshcat.__file__).resolve().parent / "viewer" / "dist" / "main.min.js"
 
 
@@ -65,7 +64,9 @@ def bundle_source() -> str:
 @functools.cache
 def scene_js() -> str:
     """kinlib's scene view (``scene.js``): shared by the widget and exported pages."""
-    return (_HERE / "scene.js").read_text(encoding="utf-8")
+    from importlib import resources
+
+    return resources.files(__package__).joinpath("scene.js").read_text(encoding="utf-8")
 
 
 _ENTRY = """
