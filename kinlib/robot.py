@@ -393,9 +393,9 @@ class Robot:
 
     def to_urdf(self, path=None) -> str:
         """This robot as URDF text (written to ``path`` too if given)."""
-        from .urdf import robot_to_urdf
+        from .urdf import urdf_from_robot
 
-        text = robot_to_urdf(self)
+        text = urdf_from_robot(self)
         if path is not None:
             with open(path, "w", encoding="utf-8") as fh:
                 fh.write(text)

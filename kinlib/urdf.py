@@ -3,7 +3,13 @@
 Read: ``<robot>``, ``<link>`` (with ``<visual>`` boxes, cylinders, spheres and meshes, and
 materials), ``<joint>`` of type revolute, continuous, prismatic or fixed with ``<origin>``,
 ``<axis>`` (normalised), ``<limit>`` and ``<mimic>``. Other elements (``<inertial>``,
-``<collision>``, ``<dynamics>``, ``<transmission>``, ``<gazebo>``, ...) are skipped.
+``<collision>``, ``<dynamics>``, ``<transmission>``, ``<gazebo>``, ...) are skipped. Where
+real files rely on how urdfdom (ROS's reader, pinocchio's) reads them, kinlib reads them
+the same way: a fixed joint's ``<axis>`` and ``<mimic>`` move nothing, and a negative mesh
+scale mirrors the mesh.
+
+Write: :func:`urdf_from_robot` (``Robot.to_urdf``) builds the document with ElementTree,
+so every name is escaped, and writes numbers exactly.
 
 The file is parsed with expat directly, so every element knows its line. Document type
 declarations are refused (they are how entity-expansion attacks work and URDF never needs
@@ -15,6 +21,8 @@ from __future__ import annotations
 
 import math
 import os
+import re
+import xml.etree.ElementTree as ET
 from xml.parsers import expat
 
 import numpy as np
@@ -30,7 +38,7 @@ from .model import (
     xyz_rpy_from_origin,
 )
 
-__all__ = ["load_urdf", "robot_to_urdf", "MAX_BYTES"]
+__all__ = ["load_urdf", "joints_as_written", "urdf_from_robot", "MAX_BYTES"]
 
 MAX_BYTES = 16 * 2**20   # 16 MiB: the largest real URDFs are a few MB
 MAX_ELEMENTS = 200_000
@@ -158,14 +166,18 @@ def _name(el: _El, src: _Source, attr="name"):
     return name
 
 
+def _xyz_rpy(el: _El, src: _Source):
+    """The ``xyz`` and ``rpy`` of the ``<origin>`` of ``el`` (zeros where not written)."""
+    o = _one(el, "origin", src, required=False)
+    if o is None:
+        return np.zeros(3), np.zeros(3)
+    return _floats(o, "xyz", 3, src, (0, 0, 0)), _floats(o, "rpy", 3, src, (0, 0, 0))
+
+
 def _origin(el: _El, src: _Source):
     """The ``<origin>`` of ``el``, built from numbers ``_floats`` has checked (finite), so
     the model takes it without checking it again (``built_transform``)."""
-    o = _one(el, "origin", src, required=False)
-    if o is None:
-        return built_transform(np.eye(4))
-    return built_transform(origin_from_xyz_rpy(_floats(o, "xyz", 3, src, (0, 0, 0)),
-                                               _floats(o, "rpy", 3, src, (0, 0, 0))))
+    return built_transform(origin_from_xyz_rpy(*_xyz_rpy(el, src)))
 
 
 def _visual(vis: _El, materials: dict, src: _Source):
@@ -202,7 +214,9 @@ def _visual(vis: _El, materials: dict, src: _Source):
         raise src.error(str(exc), g) from None
 
 
-def _joint(el: _El, src: _Source) -> Joint:
+def _joint(el: _El, src: _Source) -> tuple[Joint, dict]:
+    """A ``<joint>`` as a :class:`Joint` and as the values the file writes (see
+    :func:`joints_as_written`)."""
     name = _name(el, src)
     kind = el.attrib.get("type")
     if kind is None:
@@ -213,13 +227,15 @@ def _joint(el: _El, src: _Source) -> Joint:
                         "prismatic or fixed", el)
     parent = _name(_one(el, "parent", src, required=True), src, "link")
     child = _name(_one(el, "child", src, required=True), src, "link")
-    axis_el = _one(el, "axis", src, required=False)
-    if kind == "fixed":
-        axis_el = None  # as urdfdom: a fixed joint's axis is never read (real files say 0 0 0)
-    axis = (1.0, 0.0, 0.0) if axis_el is None else _floats(axis_el, "xyz", 3, src, (1, 0, 0))
-    if not np.any(axis):
-        raise src.error("axis xyz is the zero vector; a joint axis needs a direction",
-                        axis_el)
+    xyz, rpy = _xyz_rpy(el, src)
+    axis = None  # as urdfdom: a fixed joint's axis is never read (real files say 0 0 0)
+    if kind != "fixed":
+        axis_el = _one(el, "axis", src, required=False)
+        axis = np.array([1.0, 0.0, 0.0]) if axis_el is None else _floats(axis_el, "xyz", 3,
+                                                                          src, (1, 0, 0))
+        if not np.any(axis):
+            raise src.error("axis xyz is the zero vector; a joint axis needs a direction",
+                            axis_el)
     limits = None
     lim = _one(el, "limit", src, required=False)
     if kind in ("revolute", "prismatic"):
@@ -236,13 +252,18 @@ def _joint(el: _El, src: _Source) -> Joint:
         mimic = Mimic(_name(m, src, "joint"),
                       float(_floats(m, "multiplier", 1, src, (1.0,))[0]),
                       float(_floats(m, "offset", 1, src, (0.0,))[0]))
+        if kind == "fixed":  # checked, then ignored as urdfdom does: nothing moves
+            mimic = None
     try:
-        return Joint(name, kind, parent, child, origin=_origin(el, src), axis=axis,
-                     limits=limits, mimic=mimic)
+        jt = Joint(name, kind, parent, child,
+                   origin=built_transform(origin_from_xyz_rpy(xyz, rpy)),
+                   axis=(1.0, 0.0, 0.0) if axis is None else axis, limits=limits, mimic=mimic)
     except URDFError:
         raise
     except KinlibError as exc:
         raise src.error(str(exc), el) from None
+    return jt, {"name": name, "type": kind, "parent": parent, "child": child, "xyz": xyz,
+                "rpy": rpy, "axis": axis, "limits": limits, "mimic": mimic}
 
 
 def _read(path_or_xml) -> tuple[bytes, str]:
@@ -280,23 +301,8 @@ def _read(path_or_xml) -> tuple[bytes, str]:
     return data, label
 
 
-def load_urdf(path_or_xml, *, poses=None, reference=None):
-    """A :class:`~kinlib.Robot` from a URDF file path or URDF text.
-
-    Malformed input raises :class:`~kinlib.URDFError` naming the element and line.
-
-    >>> robot = load_urdf('''<robot name="pendulum">
-    ...   <link name="base"/> <link name="bob"/>
-    ...   <joint name="swing" type="continuous">
-    ...     <parent link="base"/> <child link="bob"/>
-    ...     <origin xyz="0 0 1"/> <axis xyz="0 2 0"/>
-    ...   </joint>
-    ... </robot>''')
-    >>> robot.joint("swing").axis
-    array([0., 1., 0.])
-    >>> robot.fk([np.pi / 2])[:3, 3]
-    array([0., 0., 1.])
-    """
+def _load(path_or_xml, poses=None, reference=None):
+    """The robot of a URDF and the values its joints are written with (:func:`_joint`)."""
     from .robot import Robot
 
     data, label = _read(path_or_xml)
@@ -315,52 +321,151 @@ def load_urdf(path_or_xml, *, poses=None, reference=None):
         lname = _name(el, src)
         src.lines.setdefault(("link", lname), []).append(el)
         links.append(Link(lname, tuple(_visual(v, materials, src) for v in el.all("visual"))))
-    joints = []
+    joints, values = [], []
     for el in root.all("joint"):
-        jt = _joint(el, src)
+        jt, v = _joint(el, src)
         src.lines.setdefault(("joint", jt.name), []).append(el)
         joints.append(jt)
-    return Robot(name, links, joints, poses=poses, reference=reference, _error=src.tree_error)
+        values.append(v)
+    robot = Robot(name, links, joints, poses=poses, reference=reference,
+                  _error=src.tree_error)
+    return robot, values
+
+
+def load_urdf(path_or_xml, *, poses=None, reference=None):
+    """A :class:`~kinlib.Robot` from a URDF file path or URDF text.
+
+    Malformed input raises :class:`~kinlib.URDFError` naming the element and line. As
+    urdfdom (ROS's reader, which pinocchio uses), a fixed joint's ``<axis>`` is not read
+    and its ``<mimic>`` has no effect; a mesh's negative scale mirrors it.
+
+    >>> robot = load_urdf('''<robot name="pendulum">
+    ...   <link name="base"/> <link name="bob"/>
+    ...   <joint name="swing" type="continuous">
+    ...     <parent link="base"/> <child link="bob"/>
+    ...     <origin xyz="0 0 1"/> <axis xyz="0 2 0"/>
+    ...   </joint>
+    ... </robot>''')
+    >>> robot.joint("swing").axis
+    array([0., 1., 0.])
+    >>> robot.fk([np.pi / 2])[:3, 3]
+    array([0., 0., 1.])
+    """
+    return _load(path_or_xml, poses, reference)[0]
+
+
+def joints_as_written(path_or_xml):
+    """``(robot, joints)``: :func:`load_urdf`'s robot and its ``<joint>`` elements as plain
+    data with the numbers as the file writes them (document order).
+
+    Each joint is a dict with ``name``, ``type``, ``parent``, ``child``, ``xyz`` and ``rpy``
+    (lists of 3 floats; zeros where not written), ``axis`` (3 floats, *not* normalised;
+    ``None`` for a fixed joint), ``limits`` (``(lower, upper)`` or ``None``) and ``mimic``
+    (a :class:`~kinlib.model.Mimic` or ``None``), checked as :func:`load_urdf` checks them.
+
+    >>> robot, (swing,) = joints_as_written('''<robot name="pendulum">
+    ...   <link name="base"/> <link name="bob"/>
+    ...   <joint name="swing" type="continuous"> <parent link="base"/> <child link="bob"/>
+    ...     <origin xyz="0 0 1"/> <axis xyz="0 2 0"/> </joint>
+    ... </robot>''')
+    >>> robot.root, swing["xyz"], swing["rpy"], swing["axis"]
+    ('base', [0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [0.0, 2.0, 0.0])
+    """
+    robot, values = _load(path_or_xml)
+    out = []
+    for v in values:
+        v = dict(v)
+        for key in ("xyz", "rpy", "axis"):
+            v[key] = None if v[key] is None else [float(x) for x in v[key]]
+        out.append(v)
+    return robot, out
 
 
 # -- writing ---------------------------------------------------------------------------
+UNLIMITED_PRISMATIC = 1e6  # URDF cannot say "unlimited" for a prismatic joint
+
+# what XML 1.0 can hold (its production Char): no other control characters, no surrogates
+_NOT_XML = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+
+
 def _num(x) -> str:
+    """Numbers as ``repr`` writes them: the shortest text that reads back to the same float."""
     return " ".join(repr(float(v)) for v in np.atleast_1d(x))
 
 
-def _origin_xml(T, indent):
-    if np.array_equal(T, np.eye(4)):
-        return ""
-    xyz, rpy = xyz_rpy_from_origin(T)
-    return f'{indent}<origin xyz="{_num(xyz)}" rpy="{_num(rpy)}"/>\n'
+def _text(value: str, what: str) -> str:
+    bad = _NOT_XML.search(value)
+    if bad is not None:
+        raise KinlibError(f"cannot export: {what} {value!r} holds the character "
+                          f"{bad.group()!r}, which XML cannot hold")
+    if not value.strip():
+        raise KinlibError(f"cannot export: {what} {value!r} is blank; URDF needs a name")
+    return value
 
 
-def _visual_xml(v: Visual) -> str:
-    shape = {
-        "box": lambda: f'<box size="{_num(v.size)}"/>',
-        "cylinder": lambda: f'<cylinder radius="{_num(v.size[0])}" length="{_num(v.size[1])}"/>',
-        "sphere": lambda: f'<sphere radius="{_num(v.size[0])}"/>',
-        "mesh": lambda: f'<mesh filename="{v.filename}" scale="{_num(v.size)}"/>',
-    }[v.kind]()
-    out = "    <visual>\n" + _origin_xml(v.origin, "      ")
-    out += f"      <geometry>{shape}</geometry>\n"
+def _origin_el(parent, T) -> None:
+    if not np.array_equal(T, np.eye(4)):
+        xyz, rpy = xyz_rpy_from_origin(T)
+        ET.SubElement(parent, "origin", xyz=_num(xyz), rpy=_num(rpy))
+
+
+def _visual_el(parent, v: Visual, where: str) -> None:
+    el = ET.SubElement(parent, "visual")
+    _origin_el(el, v.origin)
+    geom = ET.SubElement(el, "geometry")
+    if v.kind == "box":
+        ET.SubElement(geom, "box", size=_num(v.size))
+    elif v.kind == "cylinder":
+        ET.SubElement(geom, "cylinder", radius=_num(v.size[0]), length=_num(v.size[1]))
+    elif v.kind == "sphere":
+        ET.SubElement(geom, "sphere", radius=_num(v.size[0]))
+    else:
+        ET.SubElement(geom, "mesh", filename=_text(v.filename, f"{where}: mesh filename"),
+                      scale=_num(v.size))
     if v.rgba is not None:
-        out += f'      <material name=""><color rgba="{_num(v.rgba)}"/></material>\n'
-    return out + "    </visual>\n"
+        ET.SubElement(ET.SubElement(el, "material", name=""), "color", rgba=_num(v.rgba))
 
 
-UNLIMITED_PRISMATIC = 1e6  # URDF cannot say "unlimited" for a prismatic joint
+def _joint_el(parent, name, kind, parent_link, child_link, T):
+    el = ET.SubElement(parent, "joint", name=_text(name, "joint name"), type=kind)
+    ET.SubElement(el, "parent", link=parent_link)
+    ET.SubElement(el, "child", link=child_link)
+    _origin_el(el, T)
+    return el
 
 
-def robot_to_urdf(robot) -> str:
+def urdf_from_robot(robot) -> str:
     """URDF text for ``robot``; a joint with a ``post`` transform (standard DH) is written
     as the moving joint into ``<child>_motion`` followed by a fixed joint ``<name>_post``,
     so every link of the robot keeps its frame.
-    """
-    from xml.sax.saxutils import quoteattr
 
+    The text is built with :mod:`xml.etree.ElementTree`, so any name or mesh file name
+    (``&``, ``<``, quotes, non-ASCII) is escaped and reads back as it was; numbers are
+    written exactly (``repr``), so :func:`load_urdf` gives back the same robot.
+
+    >>> robot = load_urdf('''<robot name="R&amp;D"> <link name="a"/> <link name="b"/>
+    ...   <joint name="j" type="continuous"> <parent link="a"/> <child link="b"/>
+    ...     <origin xyz="0.1 0 0"/> <axis xyz="0 0 1"/> </joint> </robot>''')
+    >>> print(urdf_from_robot(robot))
+    <?xml version="1.0" encoding="utf-8"?>
+    <robot name="R&amp;D">
+      <link name="a" />
+      <link name="b" />
+      <joint name="j" type="continuous">
+        <parent link="a" />
+        <child link="b" />
+        <origin xyz="0.1 0.0 0.0" rpy="0.0 0.0 0.0" />
+        <axis xyz="0.0 0.0 1.0" />
+      </joint>
+    </robot>
+    """
     names = set(robot.link_names)
-    body, extra_links = [], []
+    top = ET.Element("robot", name=_text(robot.name, "robot name"))
+    for lk in robot.links:
+        el = ET.SubElement(top, "link", name=_text(lk.name, "link name"))
+        for v in lk.visuals:
+            _visual_el(el, v, f"link {lk.name!r}")
+    joints = ET.Element("joints")  # after every link, as the files ROS writes
     for jt in robot.joints:
         child = jt.child
         has_post = not np.array_equal(jt.post, np.eye(4))
@@ -368,37 +473,24 @@ def robot_to_urdf(robot) -> str:
             child = f"{jt.child}_motion"
             if child in names:
                 raise KinlibError(f"cannot export: link name {child!r} is already taken")
-            extra_links.append(child)
+            ET.SubElement(top, "link", name=child)
         kind = jt.type
         if kind == "revolute" and jt.limits is not None and not np.isfinite(jt.limits).all():
             kind = "continuous"
-        s = f"  <joint name={quoteattr(jt.name)} type={quoteattr(kind)}>\n"
-        s += f"    <parent link={quoteattr(jt.parent)}/>\n    <child link={quoteattr(child)}/>\n"
-        s += _origin_xml(jt.origin, "    ")
+        el = _joint_el(joints, jt.name, kind, jt.parent, child, jt.origin)
         if jt.movable:
-            s += f'    <axis xyz="{_num(jt.axis)}"/>\n'
+            ET.SubElement(el, "axis", xyz=_num(jt.axis))
         if kind in ("revolute", "prismatic"):
             lo, hi = jt.limits if jt.limits is not None else (-np.inf, np.inf)
             lo, hi = max(lo, -UNLIMITED_PRISMATIC), min(hi, UNLIMITED_PRISMATIC)
-            s += f'    <limit lower="{_num(lo)}" upper="{_num(hi)}" effort="0" velocity="0"/>\n'
+            ET.SubElement(el, "limit", lower=_num(lo), upper=_num(hi), effort="0",
+                          velocity="0")
         if jt.mimic is not None:
             m = jt.mimic
-            s += (f"    <mimic joint={quoteattr(m.joint)} multiplier=\"{_num(m.multiplier)}\" "
-                  f"offset=\"{_num(m.offset)}\"/>\n")
-        s += "  </joint>\n"
+            ET.SubElement(el, "mimic", joint=m.joint, multiplier=_num(m.multiplier),
+                          offset=_num(m.offset))
         if has_post:
-            s += f"  <joint name={quoteattr(jt.name + '_post')} type=\"fixed\">\n"
-            s += (f"    <parent link={quoteattr(child)}/>\n"
-                  f"    <child link={quoteattr(jt.child)}/>\n")
-            s += _origin_xml(jt.post, "    ") + "  </joint>\n"
-        body.append(s)
-    links = []
-    for lk in robot.links:
-        if lk.visuals:
-            inner = "".join(_visual_xml(v) for v in lk.visuals)
-            links.append(f"  <link name={quoteattr(lk.name)}>\n{inner}  </link>\n")
-        else:
-            links.append(f"  <link name={quoteattr(lk.name)}/>\n")
-    links += [f"  <link name={quoteattr(n)}/>\n" for n in extra_links]
-    return (f'<?xml version="1.0"?>\n<robot name={quoteattr(robot.name)}>\n'
-            + "".join(links) + "".join(body) + "</robot>\n")
+            _joint_el(joints, jt.name + "_post", "fixed", child, jt.child, jt.post)
+    top.extend(list(joints))
+    ET.indent(top, space="  ")
+    return '<?xml version="1.0" encoding="utf-8"?>\n' + ET.tostring(top, encoding="unicode") + "\n"
