@@ -133,6 +133,143 @@ def test_mimic_chain_and_cycle():
                            j("j3", "c", "d", Mimic("j2"))])
 
 
+FIXED_MIMIC = """<robot name="gripper">
+  <link name="palm"/> <link name="finger"/> <link name="pad"/> <link name="tip"/>
+  <joint name="grip" type="revolute"> <parent link="palm"/> <child link="finger"/>
+    <origin xyz="0.1 0 0"/> <axis xyz="0 0 1"/> <limit lower="-1" upper="1"/> </joint>
+  <joint name="pad_joint" type="fixed"> <parent link="finger"/> <child link="pad"/>
+    <origin xyz="0 0.05 0" rpy="0.2 0 0"/> <axis xyz="1 0 0"/>
+    <limit lower="-1.05" upper="0"/> <mimic joint="grip" multiplier="3" offset="0.5"/> </joint>
+  <joint name="tip_joint" type="fixed"> <parent link="pad"/> <child link="tip"/>
+    <origin xyz="0 0 0.02"/> <mimic joint="no_such_joint"/> </joint>
+</robot>"""
+
+
+def test_mimic_on_a_fixed_joint_is_ignored():
+    """As urdfdom (talos_left_arm.urdf has one): a fixed joint moves nothing, so its
+    ``<mimic>`` changes nothing, even one naming a joint that does not exist."""
+    robot = load_urdf(FIXED_MIMIC)
+    assert robot.joint_names == ["grip"]
+    assert robot.joint("pad_joint").mimic is None and robot.joint("tip_joint").mimic is None
+    q = 0.4
+    finger = hom(p=(0.1, 0, 0)) @ rz(q)
+    pad = finger @ hom(Rotation.from_euler("x", 0.2).as_matrix(), (0, 0.05, 0))
+    poses = robot.link_poses([q])
+    np.testing.assert_allclose(poses["finger"], finger, atol=1e-15)
+    np.testing.assert_allclose(poses["pad"], pad, atol=1e-15)
+    np.testing.assert_allclose(poses["tip"], pad @ hom(p=(0, 0, 0.02)), atol=1e-15)
+    # the same text without the two mimics is the same robot
+    plain = load_urdf(FIXED_MIMIC.replace('<mimic joint="grip" multiplier="3" offset="0.5"/>',
+                                          "").replace('<mimic joint="no_such_joint"/>', ""))
+    for name, T in plain.link_poses([q]).items():
+        np.testing.assert_array_equal(poses[name], T)
+    # built by hand, a fixed joint with a mimic is still a mistake worth a message
+    with pytest.raises(KinlibError, match="a fixed joint cannot mimic"):
+        Joint("j", "fixed", "a", "b", mimic=Mimic("k"))
+
+
+# -- export: URDF text that any XML reader reads back -----------------------------------
+AWKWARD = {  # what names and file names may hold: XML's special characters, quotes, Unicode
+    "robot": 'R&D "lab" <arm>',
+    "base": "base & <co>",
+    "arm": "arm 'A' \"B\"",
+    "hand": "händ_日本\ttab",
+    "j1": "j1 & <j>",
+    "j2": 'j2 "follows"',
+    "mesh": "meshes/R&D.stl",
+    "mirror": "package://ünï/meshes/<left> \"arm\".dae",
+}
+
+
+def awkward_robot():
+    n = AWKWARD
+    from kinlib.models.tree import Visual
+
+    links = [Link(n["base"], (Visual("box", (0.1, 0.2, 0.3), rgba=(1, 0, 0, 1)),)),
+             Link(n["arm"], (Visual("mesh", (0.001, 0.001, 0.001), filename=n["mesh"]),)),
+             Link(n["hand"], (Visual("mesh", (1, -1, 1), filename=n["mirror"],
+                                     origin=hom(rz(0.3)[:3, :3], (0, 0.1, 0))),))]
+    joints = [Joint(n["j1"], "revolute", n["base"], n["arm"], origin=hom(p=(0.1 + 0.2, 0, 1 / 3)),
+                    axis=(0, 1, 1), limits=(-0.1 - 0.2, 2 / 3)),
+              Joint(n["j2"], "revolute", n["arm"], n["hand"], origin=rot([1, 2, 3], 0.7),
+                    axis=(1, 0, 0), limits=(-4, 4), mimic=Mimic(n["j1"], -1.5, 0.25))]
+    return Robot(n["robot"], links, joints)
+
+
+def test_urdf_export_escapes_names_and_reads_back(tmp_path):
+    import xml.etree.ElementTree as ET
+
+    robot = awkward_robot()
+    text = robot.to_urdf(tmp_path / "awkward.urdf")
+    # well-formed XML whose attributes are the names, as written
+    root = ET.fromstring(text.encode("utf-8"))
+    assert root.get("name") == AWKWARD["robot"]
+    assert [el.get("name") for el in root.findall("link")] == robot.link_names
+    assert [el.get("name") for el in root.findall("joint")] == [AWKWARD["j1"], AWKWARD["j2"]]
+    assert [el.get("filename") for el in root.iter("mesh")] == [AWKWARD["mesh"],
+                                                                 AWKWARD["mirror"]]
+    assert root.find("joint/mimic").get("joint") == AWKWARD["j1"]
+    assert [el.get("scale") for el in root.iter("mesh")] == ["0.001 0.001 0.001", "1.0 -1.0 1.0"]
+    # numbers as repr writes them: the same floats come back
+    assert root.find("joint/origin").get("xyz") == f"{0.1 + 0.2!r} 0.0 {1 / 3!r}"
+    assert root.find("joint/limit").get("lower") == repr(-0.1 - 0.2)
+    for back in (load_urdf(text), load_urdf(tmp_path / "awkward.urdf")):
+        assert back.name == robot.name and back.link_names == robot.link_names
+        assert back.joint_names == robot.joint_names == [AWKWARD["j1"]]
+        for a, b in zip(robot.joints, back.joints, strict=True):
+            assert (a.name, a.type, a.parent, a.child, a.mimic, a.limits) == \
+                (b.name, b.type, b.parent, b.child, b.mimic, b.limits)
+            np.testing.assert_array_equal(a.axis, b.axis)
+            np.testing.assert_array_equal(a.origin[:3, 3], b.origin[:3, 3])
+            np.testing.assert_allclose(a.origin, b.origin, atol=1e-15)
+        for a, b in zip(robot.links, back.links, strict=True):
+            assert [(v.kind, v.size, v.filename, v.rgba) for v in a.visuals] == \
+                [(v.kind, v.size, v.filename, v.rgba) for v in b.visuals]
+            for va, vb in zip(a.visuals, b.visuals, strict=True):
+                np.testing.assert_allclose(va.origin, vb.origin, atol=1e-15)
+        qs = random_q(robot, 5, 7)
+        ours, theirs = robot.link_poses(qs), back.link_poses(qs)
+        for name in robot.link_names:
+            np.testing.assert_allclose(theirs[name], ours[name], atol=1e-14)
+
+
+def test_urdf_export_matches_a_second_xml_reader():
+    """urdfdom (tinyxml2, through pinocchio) reads the same names and poses."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        import pinocchio as pin
+
+    robot = awkward_robot()
+    model = pin.buildModelFromXML(robot.to_urdf(), True)
+    assert list(model.names[1:]) == [AWKWARD["j1"], AWKWARD["j2"]]
+    data = model.createData()
+    for q in random_q(robot, 3, 8):
+        pin.framesForwardKinematics(model, data, np.array(q))
+        for name, T in robot.link_poses(q).items():
+            M = data.oMf[model.getFrameId(name, pin.BODY)].homogeneous
+            np.testing.assert_allclose(M, T, atol=1e-14, err_msg=name)
+
+
+@pytest.mark.parametrize("field, value, phrase", [
+    ("link", "arm\x01", "link name 'arm\\x01' holds the character '\\x01'"),
+    ("robot", "r\ud800", "robot name"),
+    ("joint", "j\x0c", "joint name"),
+    ("mesh", "meshes/a\x00.stl", "link 'a': mesh filename"),
+    ("link", "   ", "link name '   ' is blank"),
+])
+def test_urdf_export_refuses_what_xml_cannot_hold(field, value, phrase):
+    from kinlib.models.tree import Visual
+
+    names = {"robot": "r", "link": "b", "joint": "j", "mesh": "m.stl"} | {field: value}
+    links = [Link("a", (Visual("mesh", (1, 1, 1), filename=names["mesh"]),)),
+             Link(names["link"])]
+    robot = Robot(names["robot"], links,
+                  [Joint(names["joint"], "continuous", "a", names["link"])])
+    with pytest.raises(KinlibError, match="cannot export") as info:
+        robot.to_urdf()
+    assert phrase in str(info.value)
+
+
 # -- peers: the Robotics Toolbox ------------------------------------------------------
 def rtb():
     with warnings.catch_warnings():

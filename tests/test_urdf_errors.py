@@ -134,6 +134,8 @@ CASES = [
      "'j2'"),
     ("mimic_fixed_joint.urdf", el('<joint name="j2"'), "mimics 'j1', which is fixed", "'j2'"),
     ("mimic_cycle.urdf", el('<joint name="j1"'), "mimic joints form a cycle", "j1 -> j2 -> j1"),
+    ("mimic_on_fixed_without_joint.urdf", el("<mimic"), "missing or empty attribute joint",
+     "<joint name='j2'> <mimic>"),
     # visuals
     ("geometry_unknown.urdf", el("<capsule"), "unknown geometry <capsule>",
      "<link name='a'> <capsule>"),
@@ -145,6 +147,8 @@ CASES = [
      "<link name='a'> <sphere>"),
     ("mesh_without_filename.urdf", el("<mesh"), "missing or empty attribute filename",
      "<link name='a'> <mesh>"),
+    ("mesh_scale_zero.urdf", el("<mesh"), "mesh scale: expected non-zero numbers",
+     "[1.0, 0.0, 1.0]", "<link name='a'> <mesh>"),
     ("geometry_empty.urdf", el("<geometry>"), "expected exactly one shape",
      "<link name='a'> <geometry>"),
     ("visual_without_geometry.urdf", el("<visual>"), "missing <geometry>",
@@ -312,6 +316,19 @@ def _check_mimic(robot):
                                [[1, 0, 0], [0, c, -s], [0, s, c]], atol=1e-12)
 
 
+def _check_mirrored(robot):
+    (visual,) = robot.link("a").visuals
+    assert visual.kind == "mesh" and visual.size == (1.0, -1.0, 1.0)
+    assert visual.filename == "package://r/meshes/arm.stl"
+
+
+def _check_fixed_mimic_ignored(robot):
+    # as urdfdom: a fixed joint's mimic moves nothing; c stays on b whatever q is
+    assert robot.joint_names == ["j1"] and robot.joint("j2").mimic is None
+    poses = robot.link_poses([0.7])
+    np.testing.assert_array_equal(poses["c"], poses["b"])
+
+
 def _check_capsule(robot):
     assert robot.link("a").visuals[0].kind == "cylinder"
     assert robot.link("a").visuals[0].size == (0.1, 1.0)
@@ -337,6 +354,9 @@ REPAIRS = [
      _check_limits),
     ("mimic_cycle.urdf", '    <mimic joint="j2"/>\n', "", 1, _check_mimic),
     ("geometry_unknown.urdf", "<capsule ", "<cylinder ", 1, _check_capsule),
+    ("mesh_scale_zero.urdf", 'scale="1 0 1"', 'scale="1 -1 1"', 1, _check_mirrored),
+    ("mimic_on_fixed_without_joint.urdf", '<mimic multiplier="2"/>',
+     '<mimic joint="j1" multiplier="2"/>', 1, _check_fixed_mimic_ignored),
     ("two_roots.urdf", "</robot>", '  <joint name="j2" type="continuous">\n'
      '    <parent link="b"/>\n    <child link="lonely"/>\n  </joint>\n</robot>', 1, _check_tree),
     ("duplicate_link.urdf", '  <link name="b"/>\n', "", 2, _check_links),

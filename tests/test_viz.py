@@ -233,6 +233,43 @@ def test_urdf_visuals_on_the_server(make_viz):
     np.testing.assert_allclose(world[:3, :3] @ EY, T_link[:3, 2], atol=1e-12)
 
 
+MIRRORED_URDF = """<robot name="mirrored">
+  <link name="left">
+    <visual><origin xyz="0 0.2 0" rpy="0.3 -0.2 0.5"/>
+      <geometry><mesh filename="tri.stl" scale="1 -1 1"/></geometry></visual>
+    <visual><geometry><mesh filename="tri.stl" scale="-0.001 -0.002 -0.001"/></geometry></visual>
+  </link>
+</robot>"""
+
+
+def test_mirrored_mesh_is_drawn_mirrored(make_viz):
+    """A negative mesh scale (real robots' left arm is the right one mirrored) reaches the
+    scene as a transform of negative determinant; three.js splits such a matrix into a
+    rotation and a negative x scale (Matrix4.decompose), and so does kinlib's decompose."""
+    from kinlib.viz._geometry import decompose
+
+    robot = load_urdf(MIRRORED_URDF)
+    viz = make_viz(robot)
+    root = f"/meshcat/{viz.prefix}/links/left"
+    moves = {c["path"]: column_major(c["matrix"]) for c in server_commands(viz)
+             if c["type"] == "set_transform"}
+    assert viz.skipped_meshes == []
+    for i, scale in enumerate([(1.0, -1.0, 1.0), (-0.001, -0.002, -0.001)]):
+        M = moves[f"{root}/visual_{i}"]
+        expected = np.array(robot.link("left").visuals[i].origin) @ np.diag([*scale, 1.0])
+        np.testing.assert_allclose(M, expected, rtol=1e-6, atol=1e-7)  # sent as float32
+        assert np.linalg.det(M[:3, :3]) < 0
+        _, R, s = decompose(expected)
+        np.testing.assert_allclose(R.T @ R, np.eye(3), atol=1e-12)
+        assert np.linalg.det(R) == pytest.approx(1.0)
+        np.testing.assert_allclose(R * s, expected[:3, :3], atol=1e-15)
+        np.testing.assert_allclose(np.abs(s), np.abs(scale), rtol=1e-12)
+        assert s[0] < 0 < s[1] * s[2]
+    _, R, s = decompose(np.diag([2.0, 3.0, 4.0, 1.0]))  # no mirror: every scale positive
+    np.testing.assert_allclose(s, [2, 3, 4])
+    np.testing.assert_array_equal(R, np.eye(3))
+
+
 def test_set_configuration_sends_and_stores(make_viz):
     robot = puma560()
     viz = make_viz(robot)

@@ -330,7 +330,9 @@ def load_urdf(path_or_xml, *, poses=None, reference=None) -> Robot:
     """A :class:`Robot` from a URDF file path or URDF text.
 
     Malformed input raises :class:`~kinlib.URDFError` naming the element and line (the
-    reading is :func:`kinlib.models.urdf.read_urdf`; the tree checks are the Robot's).
+    reading is :func:`kinlib.models.urdf.read_urdf`; the tree checks are the Robot's). As
+    urdfdom (ROS's reader, which pinocchio uses), a fixed joint's ``<axis>`` is not read
+    and its ``<mimic>`` has no effect; a mesh's negative scale mirrors it.
 
     >>> robot = load_urdf('''<robot name="pendulum">
     ...   <link name="base"/> <link name="bob"/>

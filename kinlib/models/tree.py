@@ -92,7 +92,17 @@ class Visual:
 
     ``kind`` is ``"box"`` (size = x, y, z lengths), ``"cylinder"`` (size = radius, length;
     its axis is the local z axis, as in URDF), ``"sphere"`` (size = radius,) or ``"mesh"``
-    (``filename``, size = scale x, y, z). ``rgba`` is a colour with components in [0, 1].
+    (``filename``, size = scale x, y, z). Sizes are positive; a mesh's scale factors may
+    be negative, which mirrors the mesh (real robots draw their left arm as the right
+    one mirrored, ``scale="1 -1 1"``), but not zero. ``rgba`` is a colour with components
+    in [0, 1].
+
+    >>> Visual("mesh", (1, -1, 1), filename="arm.stl").size
+    (1.0, -1.0, 1.0)
+    >>> Visual("mesh", (1, 0, 1), filename="arm.stl")
+    Traceback (most recent call last):
+    ...
+    kinlib.errors.KinlibError: mesh scale: expected non-zero numbers (...), got [1.0, 0.0, 1.0]
     """
 
     kind: str
@@ -107,9 +117,15 @@ class Visual:
             raise KinlibError(
                 f"Visual: kind must be box, cylinder, sphere or mesh, got {self.kind!r}"
             )
-        size = as_array(self.size, f"{self.kind} size", (n,))
-        if (size < 0).any() if self.kind == "mesh" else (size <= 0).any():
-            raise KinlibError(f"{self.kind} size: expected positive numbers, got {size.tolist()}")
+        what = "mesh scale" if self.kind == "mesh" else f"{self.kind} size"
+        size = as_array(self.size, what, (n,))
+        if size.ndim != 1:
+            raise KinlibError(f"{what}: expected {n} numbers, got shape {size.shape}")
+        if self.kind == "mesh" and (size == 0).any():
+            raise KinlibError(f"{what}: expected non-zero numbers (a negative one mirrors the "
+                              f"mesh), got {size.tolist()}")
+        if self.kind != "mesh" and (size <= 0).any():
+            raise KinlibError(f"{what}: expected positive numbers, got {size.tolist()}")
         object.__setattr__(self, "size", tuple(float(s) for s in size))
         object.__setattr__(self, "origin", _pose(self.origin, "visual origin"))
         if self.kind == "mesh" and not self.filename:

@@ -4,7 +4,13 @@
 Read: ``<robot>``, ``<link>`` (with ``<visual>`` boxes, cylinders, spheres and meshes, and
 materials), ``<joint>`` of type revolute, continuous, prismatic or fixed with ``<origin>``,
 ``<axis>`` (normalised), ``<limit>`` and ``<mimic>``. Other elements (``<inertial>``,
-``<collision>``, ``<dynamics>``, ``<transmission>``, ``<gazebo>``, ...) are skipped.
+``<collision>``, ``<dynamics>``, ``<transmission>``, ``<gazebo>``, ...) are skipped. Where
+real files rely on how urdfdom (ROS's reader, pinocchio's) reads them, kinlib reads them
+the same way: a fixed joint's ``<axis>`` and ``<mimic>`` move nothing, and a negative mesh
+scale mirrors the mesh.
+
+Write: :func:`urdf_from_robot` (``Robot.to_urdf``) builds the document with ElementTree,
+so every name is escaped, and writes numbers exactly.
 
 The file is parsed with expat directly, so every element knows its line. Document type
 declarations are refused (they are how entity-expansion attacks work and URDF never needs
@@ -31,7 +37,7 @@ from .tree import (
     origin_from_xyz_rpy,
 )
 
-__all__ = ["read_urdf", "URDFDescription", "MAX_BYTES"]
+__all__ = ["read_urdf", "URDFDescription", "joints_as_written", "MAX_BYTES"]
 
 MAX_BYTES = 16 * 2**20   # 16 MiB: the largest real URDFs are a few MB
 MAX_ELEMENTS = 200_000
@@ -155,14 +161,18 @@ def _name(el: _El, src: _Source, attr="name"):
     return name
 
 
+def _xyz_rpy(el: _El, src: _Source):
+    """The ``xyz`` and ``rpy`` of the ``<origin>`` of ``el`` (zeros where not written)."""
+    o = _one(el, "origin", src, required=False)
+    if o is None:
+        return np.zeros(3), np.zeros(3)
+    return _floats(o, "xyz", 3, src, (0, 0, 0)), _floats(o, "rpy", 3, src, (0, 0, 0))
+
+
 def _origin(el: _El, src: _Source):
     """The ``<origin>`` of ``el``, built from numbers ``_floats`` has checked (finite), so
     the model takes it without checking it again (``built_transform``)."""
-    o = _one(el, "origin", src, required=False)
-    if o is None:
-        return built_transform(np.eye(4))
-    return built_transform(origin_from_xyz_rpy(_floats(o, "xyz", 3, src, (0, 0, 0)),
-                                               _floats(o, "rpy", 3, src, (0, 0, 0))))
+    return built_transform(origin_from_xyz_rpy(*_xyz_rpy(el, src)))
 
 
 def _visual(vis: _El, materials: dict, src: _Source):
@@ -199,7 +209,9 @@ def _visual(vis: _El, materials: dict, src: _Source):
         raise src.error(str(exc), g) from None
 
 
-def _joint(el: _El, src: _Source) -> Joint:
+def _joint(el: _El, src: _Source) -> tuple[Joint, dict]:
+    """A ``<joint>`` as a :class:`Joint` and as the values the file writes (see
+    :func:`joints_as_written`)."""
     name = _name(el, src)
     kind = el.attrib.get("type")
     if kind is None:
@@ -210,13 +222,15 @@ def _joint(el: _El, src: _Source) -> Joint:
                         "prismatic or fixed", el)
     parent = _name(_one(el, "parent", src, required=True), src, "link")
     child = _name(_one(el, "child", src, required=True), src, "link")
-    axis_el = _one(el, "axis", src, required=False)
-    if kind == "fixed":
-        axis_el = None  # as urdfdom: a fixed joint's axis is never read (real files say 0 0 0)
-    axis = (1.0, 0.0, 0.0) if axis_el is None else _floats(axis_el, "xyz", 3, src, (1, 0, 0))
-    if not np.any(axis):
-        raise src.error("axis xyz is the zero vector; a joint axis needs a direction",
-                        axis_el)
+    xyz, rpy = _xyz_rpy(el, src)
+    axis = None  # as urdfdom: a fixed joint's axis is never read (real files say 0 0 0)
+    if kind != "fixed":
+        axis_el = _one(el, "axis", src, required=False)
+        axis = np.array([1.0, 0.0, 0.0]) if axis_el is None else _floats(axis_el, "xyz", 3,
+                                                                          src, (1, 0, 0))
+        if not np.any(axis):
+            raise src.error("axis xyz is the zero vector; a joint axis needs a direction",
+                            axis_el)
     limits = None
     lim = _one(el, "limit", src, required=False)
     if kind in ("revolute", "prismatic"):
@@ -233,13 +247,18 @@ def _joint(el: _El, src: _Source) -> Joint:
         mimic = Mimic(_name(m, src, "joint"),
                       float(_floats(m, "multiplier", 1, src, (1.0,))[0]),
                       float(_floats(m, "offset", 1, src, (0.0,))[0]))
+        if kind == "fixed":  # checked, then ignored as urdfdom does: nothing moves
+            mimic = None
     try:
-        return Joint(name, kind, parent, child, origin=_origin(el, src), axis=axis,
-                     limits=limits, mimic=mimic)
+        jt = Joint(name, kind, parent, child,
+                   origin=built_transform(origin_from_xyz_rpy(xyz, rpy)),
+                   axis=(1.0, 0.0, 0.0) if axis is None else axis, limits=limits, mimic=mimic)
     except URDFError:
         raise
     except KinlibError as exc:
         raise src.error(str(exc), el) from None
+    return jt, {"name": name, "type": kind, "parent": parent, "child": child, "xyz": xyz,
+                "rpy": rpy, "axis": axis, "limits": limits, "mimic": mimic}
 
 
 def _read(path_or_xml) -> tuple[bytes, str]:
@@ -287,6 +306,8 @@ class URDFDescription:
     links: tuple
     joints: tuple
     source: _Source
+    #: each ``<joint>`` as the file writes it (see :func:`joints_as_written`)
+    written: tuple = ()
 
     def located(self, error: TreeError) -> URDFError:
         """``error`` (raised for these links and joints) as a URDFError with the file and
@@ -324,9 +345,36 @@ def read_urdf(path_or_xml) -> URDFDescription:
         lname = _name(el, src)
         src.lines.setdefault(("link", lname), []).append(el)
         links.append(Link(lname, tuple(_visual(v, materials, src) for v in el.all("visual"))))
-    joints = []
+    joints, values = [], []
     for el in root.all("joint"):
-        jt = _joint(el, src)
+        jt, v = _joint(el, src)
         src.lines.setdefault(("joint", jt.name), []).append(el)
         joints.append(jt)
-    return URDFDescription(name, tuple(links), tuple(joints), src)
+        values.append(v)
+    return URDFDescription(name, tuple(links), tuple(joints), src, tuple(values))
+
+
+def joints_as_written(path_or_xml) -> list[dict]:
+    """The ``<joint>`` elements of a URDF as plain data, with the numbers as the file writes
+    them (document order), checked as :func:`read_urdf` checks them.
+
+    Each joint is a dict with ``name``, ``type``, ``parent``, ``child``, ``xyz`` and ``rpy``
+    (lists of 3 floats; zeros where not written), ``axis`` (3 floats, *not* normalised;
+    ``None`` for a fixed joint), ``limits`` (``(lower, upper)`` or ``None``) and ``mimic``
+    (a :class:`~kinlib.models.tree.Mimic` or ``None``).
+
+    >>> (swing,) = joints_as_written('''<robot name="pendulum">
+    ...   <link name="base"/> <link name="bob"/>
+    ...   <joint name="swing" type="continuous"> <parent link="base"/> <child link="bob"/>
+    ...     <origin xyz="0 0 1"/> <axis xyz="0 2 0"/> </joint>
+    ... </robot>''')
+    >>> swing["xyz"], swing["rpy"], swing["axis"]
+    ([0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [0.0, 2.0, 0.0])
+    """
+    out = []
+    for v in read_urdf(path_or_xml).written:
+        v = dict(v)
+        for key in ("xyz", "rpy", "axis"):
+            v[key] = None if v[key] is None else [float(x) for x in v[key]]
+        out.append(v)
+    return out

@@ -102,11 +102,20 @@ def axis_transforms(T_joint, axis) -> np.ndarray:
 def decompose(M) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Split ``M = [R diag(s), p]`` into position (..., 3), rotation (..., 3, 3), scale (..., 3).
 
+    A mirroring ``M`` (negative determinant: a mesh scaled ``1 -1 1``) gets a negative x
+    scale and a proper rotation, as three.js's ``Matrix4.decompose`` splits it.
+
     >>> p, R, s = decompose(np.diag([2.0, 3.0, 4.0, 1.0]))
     >>> s, bool(np.allclose(R, np.eye(3)))
     (array([2., 3., 4.]), True)
+    >>> p, R, s = decompose(np.diag([1.0, -1.0, 1.0, 1.0]))
+    >>> s, R.round(12) + 0.0
+    (array([-1.,  1.,  1.]), array([[-1.,  0.,  0.],
+           [ 0., -1.,  0.],
+           [ 0.,  0.,  1.]]))
     """
     M = np.asarray(M, dtype=float)
     scale = np.linalg.norm(M[..., :3, :3], axis=-2)
-    R = M[..., :3, :3] / np.where(scale > 0, scale, 1.0)[..., None, :]
+    scale[..., 0] *= np.where(np.linalg.det(M[..., :3, :3]) < 0, -1.0, 1.0)
+    R = M[..., :3, :3] / np.where(scale != 0, scale, 1.0)[..., None, :]
     return M[..., :3, 3].copy(), R, scale

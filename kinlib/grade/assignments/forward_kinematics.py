@@ -11,13 +11,12 @@ a wrong one, so each names exactly one mistake.
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
-
 import numpy as np
 
 import kinlib as kl
 from kinlib.models.tree import Joint, Link, origin_from_xyz_rpy
-from kinlib.robots.autorob import urdf_path
+from kinlib.models.urdf import joints_as_written
+from kinlib.robots.autorob import autorob_test_robot, urdf_path
 
 from .._checks import RIGHT, Assignment, Check, Mistake, Verdict, as_numeric, close, fmt
 from .._wire import Odd
@@ -228,22 +227,11 @@ def _judge_stack(args, got):
 
 
 def autorob_dict() -> dict:
-    """Seed 000's test_robot as the assignment's dict, values as written in the URDF."""
-    root = ET.parse(str(urdf_path())).getroot()
-
-    def nums(el, attr):
-        return [float(x) for x in el.get(attr, "0 0 0").split()]
-    joints = []
-    for j in root.iter("joint"):
-        o = j.find("origin")
-        joints.append({"name": j.get("name"), "type": j.get("type"),
-                       "parent": j.find("parent").get("link"),
-                       "child": j.find("child").get("link"),
-                       "xyz": nums(o, "xyz"), "rpy": nums(o, "rpy"),
-                       "axis": nums(j.find("axis"), "xyz")})
-    children = {j["child"] for j in joints}
-    (base,) = [lk.get("name") for lk in root.iter("link") if lk.get("name") not in children]
-    return {"root": base, "joints": joints}
+    """Seed 000's test_robot as the assignment's dict, values as written in the URDF (read
+    by kinlib's URDF reader, which keeps them so: the axes are not normalised)."""
+    robot, joints = autorob_test_robot(), joints_as_written(urdf_path())
+    keys = ("name", "type", "parent", "child", "xyz", "rpy", "axis")
+    return {"root": robot.root, "joints": [{k: j[k] for k in keys} for j in joints]}
 
 
 def random_tree(rng, n: int, shuffle: bool) -> dict:
