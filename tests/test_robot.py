@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from kinlib import KinlibError, Robot, load_urdf, planar_2r_fk
+from kinlib import DHRow, KinlibError, Robot, URDFError, load_urdf, planar_2r_fk
 from kinlib.kinematics import _fk
 from kinlib.models.tree import Joint, Link, Mimic
 from kinlib.robots import autorob_test_robot, panda, planar_2r, puma560, three_dof_arm, ur5
@@ -482,6 +482,59 @@ def test_tree_errors():
         Joint("j", "revolute", "a", "b", axis=(0, 0, 0))
     with pytest.raises(KinlibError, match="no joint 'q'"):
         Robot("r", L, [Joint("j", "fixed", "a", "b")]).joint("q")
+
+
+def test_tree_errors_name_the_element_and_which_one():
+    """The tree checks raise a TreeError that says which element is at fault (kind, name,
+    which of the elements of that name); load_urdf turns it into the line of that element."""
+    from kinlib.errors import TreeError
+
+    cases = [
+        (([Link("a"), Link("b"), Link("a")], []), ("link", "a"), 1),
+        (([Link("a"), Link("b"), Link("c")], [Joint("j", "fixed", "a", "b"),
+                                              Joint("j", "fixed", "a", "c")]), ("joint", "j"), 1),
+        (([Link("a"), Link("b")], [Joint("j", "fixed", "a", "x")]), ("joint", "j"), 0),
+        (([Link("a"), Link("b"), Link("c")], [Joint("j", "fixed", "a", "b")]), ("link", "c"), 0),
+        (([], []), None, 0),
+    ]
+    for (links, joints), element, nth in cases:
+        with pytest.raises(TreeError) as info:
+            Robot("r", links, joints)
+        assert (info.value.element, info.value.nth) == (element, nth), info.value
+        assert isinstance(info.value, KinlibError)
+    urdf = """<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <link name="c"/>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+  <joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint>
+</robot>"""
+    with pytest.raises(URDFError, match=r"^<urdf string>:6: duplicate joint name 'j'$"):
+        load_urdf(urdf)
+    with pytest.raises(URDFError, match=r"^<urdf string>:4: duplicate link name 'b'$"):
+        load_urdf(urdf.replace('name="c"', 'name="b"', 1))
+
+
+def test_the_dh_table_is_kept_by_the_constructor():
+    rows = [DHRow(a=0.4, alpha=np.pi / 2, d=0.1), DHRow(a=0.3, alpha=0.0, joint="prismatic")]
+    arm = Robot.from_dh(rows, "modified", name="arm")
+    assert arm.dh_convention == "modified" and arm.dh_rows == tuple(rows)
+    plain = Robot("p", arm.links, arm.joints)
+    assert plain.dh_rows is None and plain.dh_convention is None
+    np.testing.assert_allclose(plain.fk([0.2, 0.1]), arm.fk([0.2, 0.1]), atol=0)
+    with pytest.raises(AttributeError):
+        arm.dh_rows[0].a = 1.0  # the rows are frozen data, like the links and joints
+
+
+def test_public_helpers_that_ik_and_the_viewer_use():
+    arm = Robot.from_dh([DHRow(a=1.0, alpha=0.0), DHRow(a=0.5, alpha=0.0)])
+    assert arm.resolve_link() == "link2" and arm.resolve_link("link1") == "link1"
+    with pytest.raises(KinlibError, match="has no link 'nope'"):
+        arm.resolve_link("nope")
+    assert arm.check_q({"joint2": 0.5}).tolist() == [0.0, 0.5]
+    with pytest.raises(KinlibError, match="expected 2 joint values"):
+        arm.check_q([1.0, 2.0, 3.0])
+    assert arm.chain_table() is arm.chain_table("link2")  # built once per link
 
 
 def test_origins_are_checked_unless_kinlib_built_them():
