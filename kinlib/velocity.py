@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, as_tol, broadcast, fmt_index, is_symbolic, parse_seq
+from ._validate import as_array, as_tol, broadcast, fmt_index, is_symbolic, parse_seq, py_scalar
+from .conventions import GIMBAL_TOL, SKEW_TOL
 from .errors import KinlibError
 from .rotations import check_rotation, rotx, roty, rotz, skew, vee
 
@@ -20,7 +21,7 @@ __all__ = ["angular_velocity", "rotation_derivative", "add_angular_velocities",
            "point_velocity", "euler_rate_matrix", "euler_rates_singular", "analytic_jacobian"]
 
 
-def angular_velocity(R, R_dot, tol: float = 1e-8) -> np.ndarray:
+def angular_velocity(R, R_dot, tol: float = SKEW_TOL) -> np.ndarray:
     """ω with ``Ṙ Rᵀ = S(ω)`` (the angular velocity in the fixed frame), batched.
 
     ``R_dot`` must be the derivative of a rotation: ``Ṙ Rᵀ`` skew-symmetric to within
@@ -139,23 +140,41 @@ def euler_rate_matrix(angles, seq: str):
     return E
 
 
-def euler_rates_singular(angles, seq: str, tol: float = 1e-9) -> np.ndarray:
+def euler_rates_singular(angles, seq: str, tol: float = GIMBAL_TOL) -> bool | np.ndarray:
     """True where ``|det E(φ)| < tol``: the Euler rates cannot represent every ω (gimbal
-    lock: middle angle ±π/2 for three different axes, 0 or π when first = last)."""
+    lock: middle angle ±π/2 for three different axes, 0 or π when first = last).
+
+    ``|det E|`` is the sine of the middle angle's distance to its singular value, so the
+    default (:data:`kinlib.conventions.GIMBAL_TOL`) agrees with
+    :func:`~kinlib.euler_gimbal_lock`'s. A Python ``bool`` for one set of angles, a bool
+    ndarray for a batch.
+
+    >>> euler_rates_singular([0.3, np.pi / 2, -0.8], "ZYX")
+    True
+    >>> euler_rates_singular([[0.3, 0.2, -0.8], [0.0, 0.0, 0.0]], "ZYZ")
+    array([False,  True])
+    """
     E = euler_rate_matrix(as_array(angles, "angles", (3,)), seq)
-    return np.abs(np.linalg.det(E)) < as_tol(tol)
+    return py_scalar(np.abs(np.linalg.det(E)) < as_tol(tol))
 
 
-def analytic_jacobian(robot, q, seq: str = "ZYX", link=None, *, tol: float = 1e-9):
+def analytic_jacobian(robot, q, link=None, seq: str = "ZYX", *, tol: float = GIMBAL_TOL):
     """The analytic Jacobian ``[ṗ; φ̇] = J_a(q) q̇`` for the Euler/fixed sequence ``seq``.
 
     ``J_a = [J_v; E(φ)⁻¹ J_ω]`` with the geometric Jacobian's rows ``[J_v; J_ω]`` and the
     rate map ``ω = E(φ) φ̇`` at ``φ = euler_from_matrix(R(q), seq)``. At gimbal lock E is
     singular (``|det E| < tol``) and the Euler rates do not exist: that raises
     :class:`~kinlib.KinlibError` — it is the representation's singularity, not the
-    robot's; use the geometric Jacobian there.
+    robot's; use the geometric Jacobian there. The arguments come in kinlib's order:
+    ``q``, then ``link`` (default: the tip), then ``seq``.
     """
-    from .euler import euler_from_matrix
+    from .euler import EULER_SEQUENCES, euler_from_matrix
+
+    if isinstance(link, str) and link in EULER_SEQUENCES and link not in robot.link_names:
+        raise KinlibError(f"link: {link!r} is an Euler sequence, not a link of robot "
+                          f"{robot.name!r}; the order is analytic_jacobian(q, link, seq), "
+                          f"e.g. seq={link!r}")
+    parse_seq(seq)
 
     T, J = robot.fk_and_jacobian(q, link)
     phi = euler_from_matrix(T[..., :3, :3], seq)

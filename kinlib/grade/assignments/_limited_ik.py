@@ -122,7 +122,7 @@ def solutions_3r(T_local, l1, l2, l3) -> list[np.ndarray]:
     out = []
     for elbow in ("up", "down"):
         s = kl.planar_2r_ik(w[0], w[1], l1, l2, elbow=elbow)
-        if bool(s.reachable):
+        if s.success:
             t1, t2 = float(s.theta1), float(s.theta2)
             out.append(np.array([t1, t2, phi - t1 - t2]))
     return out
