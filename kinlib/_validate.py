@@ -23,6 +23,8 @@ __all__ = [
     "fmt_index",
     "is_symbolic",
     "parse_seq",
+    "py_scalar",
+    "wrap_angle",
 ]
 
 
@@ -101,6 +103,37 @@ def as_tol(tol, name: str = "tol") -> float:
     if a.ndim or a < 0:
         raise KinlibError(f"{name}: expected one number >= 0, got {_short(tol)}")
     return float(a)
+
+
+def py_scalar(x):
+    """A result for one input as a Python scalar; a batch (an ndarray with ndim >= 1) unchanged.
+
+    ``np.True_``, ``np.float64(0.5)`` and 0-d arrays become ``True``, ``0.5`` (Python
+    ``bool`` / ``float`` / ``int``, whatever ``.item()`` gives); everything else is returned
+    as it is. The one rule for kinlib's predicates and scalar-valued functions: a Python
+    scalar for one input, an ndarray for a batch.
+
+    >>> py_scalar(np.asarray(True)), py_scalar(np.float64(0.5)), py_scalar(np.zeros(2))
+    (True, 0.5, array([0., 0.]))
+    """
+    if isinstance(x, np.generic) or (isinstance(x, np.ndarray) and x.ndim == 0):
+        return x.item()
+    return x
+
+
+def wrap_angle(x):
+    """Angles (radians) wrapped into (−π, π]: −π becomes π; ``-0.0`` becomes ``0.0``.
+
+    Angles already in (−π, π] come back bit for bit (no ``(x + π) % 2π − π`` rounding);
+    the others are shifted by a multiple of 2π. Returns an ndarray (0-d for one angle).
+
+    >>> wrap_angle([-np.pi, 0.5, 4.0]).round(6)
+    array([ 3.141593,  0.5     , -2.283185])
+    """
+    a = np.asarray(x, dtype=np.float64)
+    out = np.where((a > np.pi) | (a <= -np.pi), np.pi - np.mod(np.pi - a, 2.0 * np.pi), a)
+    # np.mod may round up to exactly 2π (a just above π), which would give −π
+    return np.where(out <= -np.pi, out + 2.0 * np.pi, out) + 0.0
 
 
 def as_limits(limits, where: str) -> tuple[float, float]:

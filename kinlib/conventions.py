@@ -33,12 +33,16 @@ Euler and fixed angles
     middle angle is at its singular value (±π/2, or 0/π) and only the sum or difference of
     the outer angles is defined: kinlib then sets the *first* angle (first in the letter
     order, for extrinsic sequences too) to 0 and lets the third carry the whole rotation
-    (Craig's convention). ``euler_from_matrix(R, seq, tol=1e-12)`` treats the matrix as
-    locked when the middle angle is within ``tol`` of its singular value; the default only
-    absorbs rounding, so a matrix *near* lock gets its exact (ill-conditioned) outer angles,
-    which still reproduce R to rounding. ``euler_gimbal_lock(R, seq, tol=1e-6)`` tells
-    whether the middle angle is within ``tol`` radians of its singular value; pass the
-    same ``tol`` to ``euler_from_matrix`` to apply the convention over that whole band.
+    (Craig's convention). ``euler_from_matrix(R, seq, tol=ROUNDING_TOL)`` treats the matrix
+    as locked when the middle angle is within ``tol`` of its singular value; the default
+    only absorbs rounding, so a matrix *near* lock gets its exact (ill-conditioned) outer
+    angles, which still reproduce R to rounding. ``euler_gimbal_lock(R, seq,
+    tol=GIMBAL_TOL)`` tells whether the middle angle is within ``tol`` radians of its
+    singular value; pass the same ``tol`` to ``euler_from_matrix`` to apply the convention
+    over that whole band. ``euler_rates_singular(angles, seq, tol=GIMBAL_TOL)`` tests
+    ``|det E| < tol``, and ``|det E|`` is the sine of that same distance, so the two agree.
+    Angles that kinlib wraps (Euler angles, ``planar_2r_ik``, continuous joints in IK) lie
+    in (−π, π]: −π is returned as π.
 
 Axis-angle and Cayley
     ``axis_angle_from_matrix`` returns the angle in [0, π]. ``exp_so3(w)`` takes the rotation
@@ -87,10 +91,63 @@ Batches and symbols
 Bad input
     Raises :class:`kinlib.KinlibError` (a ``ValueError``) saying what was expected, what
     was given and where. Results that may be unreachable (IK, planning) come back as
-    result objects with ``success=False`` instead.
+    result objects with ``success=False`` instead. ``success`` is the one flag name of
+    every result (``IKResult``, ``Planar2RIK``, ``PlanResult``, ``CostToGo``, the grader's).
+
+One input, one answer
+    Predicates (``is_rotation``, ``euler_gimbal_lock``, ``is_near_singular``,
+    ``euler_rates_singular``) return a Python ``bool`` for one input and a bool ndarray for
+    a batch; scalar-valued functions (``manipulability``, ``condition_number``,
+    ``planar_2r_metric``, the angle of ``axis_angle_from_matrix``, ...) a Python ``float``
+    for one input and an ndarray for a batch.
+
+Argument order
+    A robot function takes ``q`` first, then ``link``, then ``seq`` (``robot.fk(q, link)``,
+    ``robot.jacobian(q, link)``, ``robot.analytic_jacobian(q, link, seq)``). A checker takes
+    the value, then its ``name``; tolerances are keyword-only there
+    (``check_rotation(R, name="R", *, tol=ROTATION_TOL)``, ``check_transform`` alike).
+
+Default tolerances
+    One constant per meaning, defined below and used as the default everywhere:
+    :data:`ROTATION_TOL`, :data:`GIMBAL_TOL`, :data:`SINGULAR_TOL`, :data:`SKEW_TOL`,
+    :data:`LIMIT_TOL`, :data:`ROUNDING_TOL`, :data:`IK_POSITION_TOL`, :data:`IK_ROTATION_TOL`.
 """
 
-__all__ = ["ROTATION_TOL"]
+from types import MappingProxyType
 
-#: Default tolerance for accepting a matrix as a rotation: max |RᵀR − I| and |det R − 1|.
+__all__ = ["ROTATION_TOL", "GIMBAL_TOL", "SINGULAR_TOL", "SKEW_TOL", "LIMIT_TOL",
+           "ROUNDING_TOL", "IK_POSITION_TOL", "IK_ROTATION_TOL", "DEFAULT_TOLERANCES"]
+
+#: Accepting a matrix as a rotation (``is_rotation``, ``check_rotation``, the rotation
+#: block of ``check_transform``, unit dual quaternions): max |RᵀR − I| and |det R − 1|.
 ROTATION_TOL = 1e-6
+
+#: Gimbal lock (``euler_gimbal_lock``, ``euler_rates_singular``, ``analytic_jacobian``):
+#: the middle Euler angle within this many radians of its singular value (|det E| below it).
+GIMBAL_TOL = 1e-6
+
+#: A Jacobian near a singularity (``is_near_singular``): smallest over largest singular
+#: value, σ_k / σ₁, below this (relative, so units do not matter).
+SINGULAR_TOL = 1e-6
+
+#: A matrix taken as skew-symmetric (``vee``, ``vee_se3``, ``angular_velocity``'s Ṙ Rᵀ):
+#: ``max |W + Wᵀ|`` relative to the matrix's size (its largest entry, at least 1).
+SKEW_TOL = 1e-8
+
+#: Joint limits (``Robot.check_limits``): how far (rad or m) q may lie outside them.
+LIMIT_TOL = 1e-9
+
+#: Floating-point rounding only (``euler_from_matrix``'s lock test, the rim of
+#: ``planar_2r_ik``'s workspace): a case counts as exact within this.
+ROUNDING_TOL = 1e-12
+
+#: Numerical IK's success (``Robot.ik``'s ``tol_position``): position error in metres.
+IK_POSITION_TOL = 1e-6
+
+#: Numerical IK's success (``Robot.ik``'s ``tol_rotation``): rotation error in radians.
+IK_ROTATION_TOL = 1e-6
+
+#: Every default tolerance above, by name (a test checks each ``tol`` default is one).
+DEFAULT_TOLERANCES = MappingProxyType({name: globals()[name] for name in __all__[:-1]})
+
+

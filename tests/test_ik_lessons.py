@@ -59,7 +59,7 @@ def test_planar_ik_is_seed_001s_formula_for_both_elbows(l1, l2):
     for elbow, sign in (("up", -1), ("down", +1)):
         sol = kl.planar_2r_ik(x, y, l1, l2, elbow=elbow)
         th1, th2 = seed_ik(x, y, l1, l2, sign)
-        assert sol.reachable.all()
+        assert sol.success.all()
         assert np.abs(wrap(sol.theta1 - th1)).max() < 1e-9 and np.abs(sol.theta2 - th2).max() < 1e-9
         assert np.abs(tip(sol.theta1, sol.theta2, l1, l2) - np.stack([x, y], -1)).max() < 1e-9
         q = np.stack([sol.theta1, sol.theta2], axis=1)
@@ -105,13 +105,13 @@ def test_the_workspace_is_the_annulus():
     r = np.hypot(X, Y)
     clear = (np.abs(r - (L1 + L2)) > 1e-9) & (np.abs(r - abs(L1 - L2)) > 1e-9)
     inside = (r >= abs(L1 - L2)) & (r <= L1 + L2)
-    reachable = kl.planar_2r_ik(X, Y, L1, L2).reachable
+    reachable = kl.planar_2r_ik(X, Y, L1, L2).success
     assert (reachable[clear] == inside[clear]).all()
 
 
 def n_solutions(r, l1=L1, l2=L2, tol=1e-6):
     up, down = (kl.planar_2r_ik(r, 0.0, l1, l2, elbow=e) for e in ("up", "down"))
-    if not up.reachable:
+    if not up.success:
         return 0
     same = abs(wrap(up.theta1 - down.theta1)) < tol and abs(up.theta2 - down.theta2) < tol
     return 1 if same else 2
@@ -136,7 +136,7 @@ def test_the_number_of_solutions_along_a_ray(r, count):
 def test_on_the_circles_the_elbows_coincide_stretched_or_folded():
     for r, theta2 in ((L1 + L2, 0.0), (abs(L1 - L2), np.pi)):
         up, down = (kl.planar_2r_ik(r, 0.0, L1, L2, elbow=e) for e in ("up", "down"))
-        assert up.reachable and up.theta2 == down.theta2 == theta2 and up.theta1 == down.theta1
+        assert up.success and up.theta2 == down.theta2 == theta2 and up.theta1 == down.theta1
 
 
 def test_equal_links_reach_the_base_with_any_theta1():
@@ -145,7 +145,7 @@ def test_equal_links_reach_the_base_with_any_theta1():
     assert np.abs(tip(theta1, np.pi, l, l)).max() < 1e-12
     assert np.abs(kl.planar_2r_fk(theta1, np.pi, l, l)[:, :2, 3]).max() < 1e-12
     sol = kl.planar_2r_ik(0.0, 0.0, l, l)
-    assert sol.reachable and sol.theta2 == np.pi and sol.theta1 == 0.0
+    assert sol.success and sol.theta2 == np.pi and sol.theta1 == 0.0
 
 
 @pytest.mark.parametrize("p", [(2.2, 0.9), (0.12, -0.15), (-1.0, -1.6), (0.0, 0.05),
@@ -154,7 +154,7 @@ def test_unreachable_targets_get_the_closest_configuration(p):
     p = np.array(p)
     r = np.linalg.norm(p)
     sol = kl.planar_2r_ik(*p, L1, L2)
-    assert not sol.reachable and np.isfinite([sol.theta1, sol.theta2]).all()
+    assert not sol.success and np.isfinite([sol.theta1, sol.theta2]).all()
     stretched = r > L1 + L2
     assert np.isclose(sol.theta2, 0.0 if stretched else np.pi)
     got = np.linalg.norm(tip(sol.theta1, sol.theta2) - p)

@@ -44,7 +44,7 @@ def test_ik_inverts_fk_on_both_branches(t1, t2, l1, l2, flip):
     x, y, _ = xy_phi(t1, t2, l1, l2)
     elbow = "up" if t2 < 0 else "down"
     sol = planar_2r_ik(x, y, l1, l2, elbow=elbow)
-    assert bool(sol.reachable)
+    assert sol.success
     assert sol.theta2 == pytest.approx(t2, abs=1e-6)
     np.testing.assert_allclose(xy_phi(sol.theta1, sol.theta2, l1, l2)[:2], [x, y], atol=1e-10)
     other = planar_2r_ik(x, y, l1, l2, elbow="down" if elbow == "up" else "up")
@@ -64,7 +64,7 @@ def test_elbow_up_is_above_the_line_to_a_target_on_the_x_axis():
 def test_unreachable_targets_give_the_closest_configuration(x, y, stretched):
     l1, l2 = 1.0, 0.5  # workspace: 0.5 <= r <= 1.5
     sol = planar_2r_ik(x, y, l1, l2)
-    assert not bool(sol.reachable)
+    assert not sol.success
     assert np.isfinite([sol.theta1, sol.theta2]).all()
     assert sol.theta2 == pytest.approx(0.0 if stretched else np.pi)
     p = xy_phi(sol.theta1, sol.theta2, l1, l2)[:2]
@@ -75,16 +75,16 @@ def test_unreachable_targets_give_the_closest_configuration(x, y, stretched):
 def test_boundary_is_reachable_and_both_branches_agree():
     up = planar_2r_ik(1.5, 0.0, 1.0, 0.5, elbow="up")
     down = planar_2r_ik(1.5, 0.0, 1.0, 0.5, elbow="down")
-    assert bool(up.reachable) and bool(down.reachable)
+    assert up.success and down.success
     assert float(up.theta2) == float(down.theta2) == 0.0
     base = planar_2r_ik(0.0, 0.0, 1.0, 1.0)
-    assert bool(base.reachable) and base.theta2 == pytest.approx(np.pi)
+    assert base.success and base.theta2 == pytest.approx(np.pi)
 
 
 def test_ik_batched_and_bad_input():
     x = np.array([1.0, 3.0, 0.5])
     sol = planar_2r_ik(x, 0.2, 1.0, 1.0)
-    assert sol.theta1.shape == (3,) and sol.reachable.tolist() == [True, False, True]
+    assert sol.theta1.shape == (3,) and sol.success.tolist() == [True, False, True]
     with pytest.raises(KinlibError, match="elbow"):
         planar_2r_ik(1.0, 0.0, 1.0, 1.0, elbow="left")
     with pytest.raises(KinlibError, match="positive"):
@@ -102,11 +102,11 @@ def test_ik_on_the_rim_is_exact_not_rounding_amplified():
     for x, y in ((3.0, 4.0), (-4.0, 3.0), (0.0, -5.0), (5.0, 0.0), (-3.0, -4.0)):
         for elbow in ("up", "down"):
             sol = planar_2r_ik(x, y, l1, l2, elbow=elbow)
-            assert sol.reachable and sol.theta2 == 0.0
+            assert sol.success and sol.theta2 == 0.0
             assert abs(sol.theta1 - np.arctan2(y, x)) < 1e-15
     for x, y in ((1.0, 0.0), (0.0, -1.0), (0.6, 0.8)):
         sol = planar_2r_ik(x, y, l1, l2)
-        assert sol.reachable and sol.theta2 == np.pi
+        assert sol.success and sol.theta2 == np.pi
     c2 = (1.7**2 - 1.0 - 0.49) / 1.4  # the textbook formula on the rim of a 1.0/0.7 arm
     assert np.arctan2(np.sqrt(1 - c2**2), c2) > 1e-9  # the control: it loses 8 digits
     assert planar_2r_ik(1.7, 0.0, 1.0, 0.7).theta2 == 0.0

@@ -141,7 +141,7 @@ def test_euler_rate_matrix_symbolic_zyx():
 def test_analytic_jacobian_against_finite_differences_of_the_angles(seq):
     robot = puma560()
     q = np.array([0.3, -0.7, 1.1, 0.4, 0.6, -0.2])
-    Ja = robot.analytic_jacobian(q, seq)
+    Ja = robot.analytic_jacobian(q, seq=seq)
     h = 1e-6
     for i in range(6):
         dq = np.zeros(6)
@@ -150,7 +150,9 @@ def test_analytic_jacobian_against_finite_differences_of_the_angles(seq):
         phi_m = kl.euler_from_matrix(robot.fk(q - dq)[:3, :3], seq)
         np.testing.assert_allclose(Ja[3:, i], (phi_p - phi_m) / (2 * h), atol=1e-7)
         np.testing.assert_allclose(Ja[:3, i], robot.jacobian(q)[:3, i], atol=0)
-    np.testing.assert_allclose(analytic_jacobian(robot, q[None], seq)[0], Ja, atol=1e-15)
+    np.testing.assert_allclose(analytic_jacobian(robot, q[None], None, seq)[0], Ja, atol=1e-15)
+    # q, then link, then seq: as fk(q, link) and jacobian(q, link)
+    np.testing.assert_array_equal(robot.analytic_jacobian(q, robot.tip, seq), Ja)
 
 
 def test_analytic_jacobian_at_gimbal_lock_raises():
@@ -161,8 +163,23 @@ def test_analytic_jacobian_at_gimbal_lock_raises():
     sol = robot.ik(T, position_only=False)
     assert sol.success
     with pytest.raises(kl.KinlibError, match="gimbal lock"):
-        robot.analytic_jacobian(sol.q, "ZYX")
-    robot.analytic_jacobian(sol.q, "XYZ")  # another sequence is fine there
+        robot.analytic_jacobian(sol.q, seq="ZYX")
+    robot.analytic_jacobian(sol.q, seq="XYZ")  # another sequence is fine there
+
+
+def test_analytic_jacobian_takes_link_before_seq():
+    """The old order (q, seq, link) is caught: a sequence where the link goes is named."""
+    robot = puma560()
+    q = np.array([0.3, -0.7, 1.1, 0.4, 0.6, -0.2])
+    with pytest.raises(kl.KinlibError, match=r"'ZYX' is an Euler sequence.*\(q, link, seq\)"):
+        robot.analytic_jacobian(q, "ZYX")
+    with pytest.raises(kl.KinlibError, match="ZYX"):
+        analytic_jacobian(robot, q, "ZYX", "link6")
+    # a middle link: its own rows, not the tip's (the last joints leave it alone)
+    Ja3 = robot.analytic_jacobian(q, "link3", "ZYX")
+    assert Ja3.shape == (6, 6) and np.all(Ja3[:, 3:] == 0)
+    with pytest.raises(kl.KinlibError, match="seq"):
+        robot.analytic_jacobian(q, "link3", "ZYXZ")
 
 
 def test_bad_input():

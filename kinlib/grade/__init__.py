@@ -20,7 +20,8 @@ instructor's ``secret``); the answers come back as plain JSON data and are judge
 against kinlib, with diagnoses of the classic mistakes (:mod:`kinlib.grade._checks`).
 :mod:`kinlib.grade.gradescope` exports an assignment as a Gradescope autograder.
 
-A result is a JSON-ready dict::
+A result (:class:`GradeResult`: a dict with ``.success`` and ``.to_json()``) is a JSON-ready
+dict::
 
     {"submission": path, "assignment": "01_rotations", "graded": true, "error": null,
      "score": 35.5, "max_score": 38.0, "cases": "secret", "sandbox": "bubblewrap 0.11.0",
@@ -39,6 +40,7 @@ from __future__ import annotations
 
 from ._bwrap import SandboxUnavailable
 from ._grader import (
+    GradeResult,
     assignment_names,
     cases_seed,
     format_report,
@@ -48,5 +50,5 @@ from ._grader import (
     summary,
 )
 
-__all__ = ["grade", "grade_many", "format_report", "load_assignment", "assignment_names",
-           "summary", "cases_seed", "SandboxUnavailable"]
+__all__ = ["GradeResult", "grade", "grade_many", "format_report", "load_assignment",
+           "assignment_names", "summary", "cases_seed", "SandboxUnavailable"]

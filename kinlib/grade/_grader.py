@@ -27,7 +27,7 @@ from ._sandbox import BLOCKED, Worker, WorkerDied, WorkerTimeout
 from ._wire import WireError, decode, encode
 
 __all__ = ["grade", "grade_many", "format_report", "load_assignment", "assignment_names",
-           "summary", "cases_seed"]
+           "summary", "cases_seed", "GradeResult"]
 
 MAX_RESTARTS = 12
 EXAMPLES = 3
@@ -347,18 +347,47 @@ def _summarise(check: Check, cases, results, verdicts) -> dict:
             "examples": examples}
 
 
+class GradeResult(dict):
+    """The result of :func:`grade`: the JSON-ready dict of :mod:`kinlib.grade` (every key
+    reads as before: ``r["score"]``, ``r["checks"]``), with the flag every kinlib result
+    carries and its JSON text.
+
+    ``success`` is ``r["graded"]``: whether the submission could be graded at all (not
+    whether it scored well). It is a property, not a key, so the JSON is unchanged.
+
+    >>> r = GradeResult(submission="a.ipynb", graded=False, error="not a notebook")
+    >>> r.success, r["error"]
+    (False, 'not a notebook')
+    >>> r.to_json()
+    '{"submission": "a.ipynb", "graded": false, "error": "not a notebook"}'
+    """
+
+    __slots__ = ()
+
+    @property
+    def success(self) -> bool:
+        """Whether the submission was graded (``self["graded"]``)."""
+        return bool(self.get("graded", False))
+
+    def to_json(self) -> str:
+        """One line of JSON (NaN/inf refused; anything else unusual as its ``str``): what
+        ``python -m kinlib.grade --json`` prints."""
+        return json.dumps(self, allow_nan=False, default=str)
+
+
 def not_graded(submission, assignment: str | None, error: str | None,
-               max_score: float = 0.0) -> dict:
+               max_score: float = 0.0) -> GradeResult:
     """A result with nothing graded (yet): ``error`` says why."""
-    return {"submission": str(submission), "assignment": assignment, "graded": False,
-            "error": error, "score": 0.0, "max_score": max_score, "checks": [], "cells": []}
+    return GradeResult(submission=str(submission), assignment=assignment, graded=False,
+                       error=error, score=0.0, max_score=max_score, checks=[], cells=[])
 
 
 def grade(submission, assignment: str | None = None, *, seed: int = 0,
           secret: str | bytes | None = None, cell_timeout: float = 60.0,
           memory_mb: int = 4096, submission_timeout: float = SUBMISSION_TIMEOUT,
-          unsandboxed: bool = False) -> dict:
-    """Grade one notebook; a JSON-ready dict (see :mod:`kinlib.grade`).
+          unsandboxed: bool = False) -> GradeResult:
+    """Grade one notebook: a :class:`GradeResult`, the JSON-ready dict of
+    :mod:`kinlib.grade` with ``.success`` (graded) and ``.to_json()``.
 
     The cases come from ``seed`` (public: a student can run the same ones), or, if
     ``secret`` is given, from the instructor's secret (:func:`cases_seed`). The submission's
@@ -403,7 +432,7 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
 
 
 def grade_many(submissions, assignment: str | None = None, *, jobs: int | None = None,
-               on_result=None, **kwargs) -> list[dict]:
+               on_result=None, **kwargs) -> list[GradeResult]:
     """Grade several notebooks in parallel (``jobs`` student processes at a time); the
     results in the order of ``submissions``. ``on_result(result)`` is called (in this
     thread) for each one as soon as it is known. Keyword arguments go to :func:`grade`.
@@ -498,4 +527,5 @@ def format_report(result: dict) -> str:
 
 
 def to_json(result: dict) -> str:
-    return json.dumps(result, allow_nan=False, default=str)
+    """``result`` as one line of JSON (:meth:`GradeResult.to_json`, for any dict)."""
+    return GradeResult.to_json(result)

@@ -5,23 +5,31 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_tol, fmt_index
+from .._validate import as_tol, fmt_index, parse_seq
+from ..conventions import GIMBAL_TOL
 from ..errors import KinlibError
-from ..spatial.euler import euler_from_matrix
+from ..spatial.euler import EULER_SEQUENCES, euler_from_matrix
 from ..spatial.velocity import euler_rate_matrix
 
 __all__ = ["analytic_jacobian"]
 
 
-def analytic_jacobian(robot, q, seq: str = "ZYX", link=None, *, tol: float = 1e-9):
+def analytic_jacobian(robot, q, link=None, seq: str = "ZYX", *, tol: float = GIMBAL_TOL):
     """The analytic Jacobian ``[ṗ; φ̇] = J_a(q) q̇`` for the Euler/fixed sequence ``seq``.
 
     ``J_a = [J_v; E(φ)⁻¹ J_ω]`` with the geometric Jacobian's rows ``[J_v; J_ω]`` and the
     rate map ``ω = E(φ) φ̇`` at ``φ = euler_from_matrix(R(q), seq)``. At gimbal lock E is
     singular (``|det E| < tol``) and the Euler rates do not exist: that raises
     :class:`~kinlib.KinlibError` — it is the representation's singularity, not the
-    robot's; use the geometric Jacobian there.
+    robot's; use the geometric Jacobian there. The arguments come in kinlib's order:
+    ``q``, then ``link`` (default: the tip), then ``seq``.
     """
+    if isinstance(link, str) and link in EULER_SEQUENCES and link not in robot.link_names:
+        raise KinlibError(f"link: {link!r} is an Euler sequence, not a link of robot "
+                          f"{robot.name!r}; the order is analytic_jacobian(q, link, seq), "
+                          f"e.g. seq={link!r}")
+    parse_seq(seq)
+
     T, J = robot.fk_and_jacobian(q, link)
     phi = euler_from_matrix(T[..., :3, :3], seq)
     E = euler_rate_matrix(phi, seq)

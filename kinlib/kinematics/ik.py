@@ -28,7 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import as_array, as_tol
+from .._validate import as_array, as_tol, wrap_angle
+from ..conventions import IK_POSITION_TOL, IK_ROTATION_TOL
 from ..errors import KinlibError
 from ..spatial.axis_angle import log_so3
 from ..spatial.transforms import check_transform
@@ -116,8 +117,7 @@ class _Limits:
 
     def project(self, q):
         q = np.clip(q, self.lo, self.hi)
-        wrapped = np.pi - np.mod(np.pi - q, 2 * np.pi)  # into (−π, π]
-        return np.where(self.wrap, wrapped, q)
+        return np.where(self.wrap, wrap_angle(q), q)  # continuous joints into (−π, π]
 
     def sample(self, rng, n):
         return rng.uniform(self.sample_lo, self.sample_hi, (n, len(self.lo)))
@@ -177,8 +177,8 @@ def _rank_starts(robot, link, T_t, starts, position_only, keep_first):
 
 
 def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
-             tol_position=1e-6, tol_rotation=1e-6, max_iterations=30, restarts=100, seed=0,
-             compiled=None):
+             tol_position=IK_POSITION_TOL, tol_rotation=IK_ROTATION_TOL, max_iterations=30,
+             restarts=100, seed=0, compiled=None):
     """See :meth:`kinlib.Robot.ik`. ``compiled=False`` forces the numpy reference."""
     T_t = _targets(T_target, position_only)
     batch = T_t.shape[:-2]

@@ -17,7 +17,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validate import as_array, broadcast
+from .._validate import as_array, broadcast, py_scalar, wrap_angle
+from ..conventions import ROUNDING_TOL
 from ..errors import KinlibError
 
 __all__ = ["Planar2RIK", "planar_2r_fk", "planar_2r_ik", "planar_2r_jacobian"]
@@ -80,14 +81,17 @@ def planar_2r_jacobian(theta1, theta2, l1, l2) -> np.ndarray:
 class Planar2RIK(NamedTuple):
     """Result of :func:`planar_2r_ik`: joint angles and whether the target is reachable.
 
-    For an unreachable target, ``theta1, theta2`` is the closest configuration: the arm
-    stretched towards the target (too far) or folded towards it (too close), and
-    ``reachable`` is False. Never NaN.
+    ``success`` is True where the target lies in the workspace annulus
+    ``|l1 − l2| <= r <= l1 + l2`` (its rim included, to rounding). For an unreachable
+    target, ``theta1, theta2`` is the closest configuration: the arm stretched towards
+    the target (too far) or folded towards it (too close), and ``success`` is False. Never
+    NaN. Angles lie in (−π, π]. For one target the three are a Python ``float``, ``float``
+    and ``bool``; for a batch, ndarrays of the batch shape.
     """
 
-    theta1: np.ndarray
-    theta2: np.ndarray
-    reachable: np.ndarray
+    theta1: float | np.ndarray
+    theta2: float | np.ndarray
+    success: bool | np.ndarray
 
 
 def planar_2r_ik(x, y, l1, l2, elbow: str = "up") -> Planar2RIK:
@@ -99,19 +103,21 @@ def planar_2r_ik(x, y, l1, l2, elbow: str = "up") -> Planar2RIK:
     base with ``l1 = l2`` every θ1 works; θ1 = 0 is returned. Batched over x, y.
 
     >>> sol = planar_2r_ik(1.0, 1.0, 1.0, 1.0, elbow="down")
-    >>> float(sol.theta1), float(sol.theta2), bool(sol.reachable)
+    >>> sol.theta1, sol.theta2, sol.success
     (0.0, 1.5707963267948966, True)
-    >>> planar_2r_ik(3.0, 0.0, 1.0, 1.0).reachable
-    array(False)
+    >>> planar_2r_ik(3.0, 0.0, 1.0, 1.0).success
+    False
+    >>> planar_2r_ik([1.0, 3.0], 0.0, 1.0, 1.0).success
+    array([ True, False])
     """
     if elbow not in ("up", "down"):
         raise KinlibError(f"elbow: expected 'up' or 'down', got {elbow!r}")
     px, py = as_array(x, "x"), as_array(y, "y")
     a1, a2 = _lengths(l1, l2)
-    broadcast((px, 0, "x"), (py, 0, "y"), (a1, 0, "l1"), (a2, 0, "l2"))
+    batch = broadcast((px, 0, "x"), (py, 0, "y"), (a1, 0, "l1"), (a2, 0, "l2"))
     c2 = (px * px + py * py - a1 * a1 - a2 * a2) / (2.0 * a1 * a2)
-    tol = 1e-12
-    reachable = np.asarray((c2 >= -1.0 - tol) & (c2 <= 1.0 + tol))
+    tol = ROUNDING_TOL
+    success = np.broadcast_to((c2 >= -1.0 - tol) & (c2 <= 1.0 + tol), batch)
     # |θ2| from the half-angle form tan²(θ2/2) = ((l1+l2)² − r²) / (r² − (l1−l2)²), whose
     # factors are differences of lengths: exact 0 on the rim where √(1 − c2²) would turn a
     # rounding error of c2 (1e-16) into θ2 ≈ 1e-8. Clipping gives the closest configuration
@@ -125,5 +131,8 @@ def planar_2r_ik(x, y, l1, l2, elbow: str = "up") -> Planar2RIK:
     s2 = np.where(folded, 0.0, np.sin(theta2))  # exact when folded: sin(π) is 1.2e-16
     c2 = np.where(folded, -1.0, np.cos(theta2))
     theta1 = np.arctan2(py, px) - np.arctan2(a2 * s2, a1 + a2 * c2)
-    theta1 = (theta1 + np.pi) % (2 * np.pi) - np.pi  # into [−π, π)
-    return Planar2RIK(theta1, theta2, reachable)
+    theta1 = np.broadcast_to(wrap_angle(theta1), batch)  # into (−π, π]
+    theta2 = np.broadcast_to(wrap_angle(theta2), batch)  # already in (−π, π]; −0.0 → 0.0
+    if not batch:
+        return Planar2RIK(py_scalar(theta1), py_scalar(theta2), py_scalar(success))
+    return Planar2RIK(theta1.copy(), theta2.copy(), success.copy())

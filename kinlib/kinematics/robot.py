@@ -17,6 +17,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from .._validate import as_array, fmt_index
+from ..conventions import GIMBAL_TOL, IK_POSITION_TOL, IK_ROTATION_TOL, LIMIT_TOL
 from ..errors import KinlibError, TreeError
 from ..models.dh_tree import dh_tree
 from ..models.tree import Joint, Link, check_tree, mimic_sources
@@ -153,7 +154,7 @@ class Robot:
             )
         return a
 
-    def check_limits(self, q, *, tol: float = 1e-9) -> np.ndarray:
+    def check_limits(self, q, *, tol: float = LIMIT_TOL) -> np.ndarray:
         """``q`` as an array if every joint is within its limits (± ``tol``), else raise.
 
         The message names the joint, its limits, the value and the batch index.
@@ -257,14 +258,17 @@ class Robot:
         Rt = np.swapaxes(R, -1, -2)
         return np.concatenate([Rt @ J[..., :3, :], Rt @ J[..., 3:, :]], axis=-2)
 
-    def analytic_jacobian(self, q, seq: str = "ZYX", link=None) -> np.ndarray:
-        """``[ṗ; φ̇] = J_a q̇`` for Euler/fixed angles ``seq``; see
+    def analytic_jacobian(self, q, link=None, seq: str = "ZYX", *,
+                          tol: float = GIMBAL_TOL) -> np.ndarray:
+        """``[ṗ; φ̇] = J_a q̇`` of ``link`` for Euler/fixed angles ``seq`` (``q``, then
+        ``link``, then ``seq``, as in :meth:`fk`); see
         :func:`kinlib.kinematics.analytic.analytic_jacobian` (raises at the angles' gimbal
         lock)."""
-        return analytic_jacobian(self, q, seq, link)
+        return analytic_jacobian(self, q, link, seq, tol=tol)
 
-    def ik(self, T_target, q0=None, *, link=None, position_only=False, tol_position=1e-6,
-           tol_rotation=1e-6, max_iterations=30, restarts=100, seed=0):
+    def ik(self, T_target, q0=None, *, link=None, position_only=False,
+           tol_position=IK_POSITION_TOL, tol_rotation=IK_ROTATION_TOL, max_iterations=30,
+           restarts=100, seed=0):
         """Joint values that put ``link`` (default: the tip) at ``T_target``.
 
         Damped least squares with Levenberg–Marquardt damping on the full pose (or the

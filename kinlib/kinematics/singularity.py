@@ -10,13 +10,17 @@ rows, or the planar arm's 2×2. With the singular value decomposition
 * the velocity ellipsoid ``{J q̇ : |q̇| ≤ 1}`` has semi-axes ``σᵢ uᵢ``.
 
 For the planar 2R arm's position Jacobian, ``w = |l1 l2 sin θ2|``.
+
+One Jacobian gives a Python ``float`` (``bool`` for :func:`is_near_singular`), a batch an
+ndarray of the batch shape.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, as_tol
+from .._validate import as_array, as_tol, py_scalar
+from ..conventions import SINGULAR_TOL
 from ..errors import KinlibError
 
 __all__ = ["singular_values", "manipulability", "condition_number", "velocity_ellipsoid",
@@ -39,26 +43,30 @@ def singular_values(J) -> np.ndarray:
     return np.linalg.svd(_matrix(J), compute_uv=False)
 
 
-def manipulability(J) -> np.ndarray:
+def manipulability(J) -> float | np.ndarray:
     """Yoshikawa's ``√det(J Jᵀ)``, computed as the product of the singular values (never
     NaN; exactly the volume factor of the velocity ellipsoid). For m > n (more task
     directions than joints) ``J Jᵀ`` is always singular and this is 0.
 
     >>> from kinlib import planar_2r_jacobian
-    >>> float(manipulability(planar_2r_jacobian(0.3, np.pi / 2, 1.0, 0.5)[:2]))
+    >>> manipulability(planar_2r_jacobian(0.3, np.pi / 2, 1.0, 0.5)[:2])
     0.5
     """
     a = _matrix(J)
     s = np.linalg.svd(a, compute_uv=False)
     w = np.prod(s, axis=-1)
-    return np.where(a.shape[-2] > a.shape[-1], 0.0, w)
+    return py_scalar(np.where(a.shape[-2] > a.shape[-1], 0.0, w))
 
 
-def condition_number(J) -> np.ndarray:
-    """``σ₁ / σ_k``: 1 for an isotropic Jacobian, ∞ at a singularity (σ_k = 0)."""
+def condition_number(J) -> float | np.ndarray:
+    """``σ₁ / σ_k``: 1 for an isotropic Jacobian, ∞ at a singularity (σ_k = 0).
+
+    >>> condition_number([[2.0, 0.0], [0.0, 0.5]]), condition_number(np.zeros((2, 2)))
+    (4.0, inf)
+    """
     s = singular_values(J)
     small = s[..., -1]
-    return np.where(small > 0, s[..., 0] / np.where(small > 0, small, 1.0), np.inf)
+    return py_scalar(np.where(small > 0, s[..., 0] / np.where(small > 0, small, 1.0), np.inf))
 
 
 def velocity_ellipsoid(J) -> tuple[np.ndarray, np.ndarray]:
@@ -80,13 +88,17 @@ def velocity_ellipsoid(J) -> tuple[np.ndarray, np.ndarray]:
     return U, radii
 
 
-def is_near_singular(J, tol: float = 1e-6) -> np.ndarray:
+def is_near_singular(J, tol: float = SINGULAR_TOL) -> bool | np.ndarray:
     """True where ``σ_k / σ₁ < tol`` (relative, so units do not matter), or J is all zero.
 
+    A Python ``bool`` for one Jacobian, a bool ndarray for a batch.
+
     >>> from kinlib import planar_2r_jacobian
-    >>> bool(is_near_singular(planar_2r_jacobian(0.3, 0.0, 1.0, 1.0)[:2]))
+    >>> is_near_singular(planar_2r_jacobian(0.3, 0.0, 1.0, 1.0)[:2])
     True
+    >>> is_near_singular(planar_2r_jacobian([0.3, 0.3], [0.0, 1.0], 1.0, 1.0)[:, :2])
+    array([ True, False])
     """
     tol = as_tol(tol)
     s = singular_values(J)
-    return (s[..., 0] == 0) | (s[..., -1] < tol * s[..., 0])
+    return py_scalar((s[..., 0] == 0) | (s[..., -1] < tol * s[..., 0]))

@@ -43,7 +43,7 @@ class PlanResult:
     Attributes
     ----------
     success : bool
-        Whether a path was found.
+        Whether a path was found (a Python bool, the flag of every kinlib result).
     message : str
         What happened (which of start/goal is blocked, or that no path exists).
     cells : ndarray (K, 2) int
@@ -74,10 +74,23 @@ class PlanResult:
 class CostToGo(NamedTuple):
     """Result of :func:`cost_to_go`: ``cost`` (n1, n2), inf where the goal cannot be
     reached; ``next_step`` (n1, n2, 2), the unit C-space direction of the optimal first
-    move (zero at the goal and where unreachable)."""
+    move (zero at the goal and where unreachable).
+
+    ``success`` (a Python bool, the flag of every kinlib result) is whether a field was
+    computed: the goal cell is free. Then ``cost`` is 0 at the goal and finite wherever
+    the goal can be reached from; when the goal cell is occupied nothing reaches it,
+    ``cost`` is inf everywhere and ``success`` is False. (Whether one particular start
+    reaches the goal is ``np.isfinite(cost[cell])``.) It is derived from ``cost``, so the
+    result still unpacks as ``cost, next_step = cost_to_go(...)``.
+    """
 
     cost: np.ndarray
     next_step: np.ndarray
+
+    @property
+    def success(self) -> bool:
+        """Whether the goal cell is free (its cost, 0, is finite): see the class."""
+        return bool(np.isfinite(self.cost).any())
 
 
 def _check_grid(grid) -> CSpaceGrid:
@@ -239,15 +252,16 @@ def cost_to_go(grid, goal, metric: str = "joint") -> CostToGo:
     -------
     CostToGo
         ``(cost, next_step)``: (n1, n2), inf where unreachable or occupied (everywhere if
-        the goal cell is occupied); (n1, n2, 2), zero at the goal and where unreachable.
+        the goal cell is occupied, and then ``success`` is False); (n1, n2, 2), zero at the
+        goal and where unreachable.
 
     Examples
     --------
     >>> from kinlib.planning.cspace import planar_2r_cspace
     >>> grid = planar_2r_cspace(1.0, 1.0, [], n=8)
     >>> ctg = cost_to_go(grid, [0.1, 0.1])
-    >>> float(ctg.cost[4, 4]), ctg.next_step[6, 4].tolist()
-    (0.0, [-1.0, 0.0])
+    >>> ctg.success, float(ctg.cost[4, 4]), ctg.next_step[6, 4].tolist()
+    (True, 0.0, [-1.0, 0.0])
     """
     grid = _check_grid(grid)
     metric = _check_metric(metric)

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import as_array, broadcast
+from .._validate import as_array, broadcast, py_scalar
 from ..errors import KinlibError
 from ..kinematics.planar import _lengths, planar_2r_fk
 from ._geometry2d import point_segment_distance as _point_segment
@@ -167,7 +167,7 @@ class Polygon:
 # --------------------------------------------------------------------------- the metric
 
 
-def planar_2r_metric(theta, dtheta, l1, l2) -> np.ndarray:
+def planar_2r_metric(theta, dtheta, l1, l2) -> float | np.ndarray:
     r"""Seed 001's minimum end-effector-distance metric ``c = sqrt(δθᵀ JᵀJ δθ)``.
 
     ``c`` is the speed of the end for joint velocity ``δθ`` at configuration ``θ``: the
@@ -184,14 +184,14 @@ def planar_2r_metric(theta, dtheta, l1, l2) -> np.ndarray:
 
     Returns
     -------
-    ndarray, shape (...)
-        End-effector distance per step (metres).
+    float or ndarray, shape (...)
+        End-effector distance per step (metres): a Python float for one step.
 
     Examples
     --------
-    >>> float(planar_2r_metric([0.3, 0.0], [1.0, 0.0], 1.0, 0.5))  # stretched: l1 + l2
+    >>> planar_2r_metric([0.3, 0.0], [1.0, 0.0], 1.0, 0.5)  # stretched: l1 + l2
     1.5
-    >>> float(planar_2r_metric([0.3, np.pi / 2], [0.0, 2.0], 1.0, 0.5))  # only link 2 turns
+    >>> planar_2r_metric([0.3, np.pi / 2], [0.0, 2.0], 1.0, 0.5)  # only link 2 turns
     1.0
     """
     th = as_array(theta, "theta", (2,))
@@ -199,7 +199,7 @@ def planar_2r_metric(theta, dtheta, l1, l2) -> np.ndarray:
     a1, a2 = _lengths(l1, l2)
     broadcast((th, 1, "theta"), (d, 1, "dtheta"), (a1, 0, "l1"), (a2, 0, "l2"))
     t2, d1, d12 = th[..., 1], d[..., 0], d[..., 0] + d[..., 1]
-    return np.hypot(a1 * d1 + a2 * d12 * np.cos(t2), a2 * d12 * np.sin(t2))
+    return py_scalar(np.hypot(a1 * d1 + a2 * d12 * np.cos(t2), a2 * d12 * np.sin(t2)))
 
 
 # --------------------------------------------------------------------------- the grid

@@ -24,13 +24,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array
+from .._validate import as_array, wrap_angle
 from ..errors import KinlibError
 from ..planning.cspace import Circle, CSpaceGrid, Polygon, planar_2r_cspace
 
 __all__ = ["CSPACE_EXTENT", "plot_obstacles", "cspace_image", "plot_cspace", "wrap_path"]
 
-#: ``(left, right, bottom, top)`` of the C-space picture: θ1 and θ2 in [−π, π)
+#: ``(left, right, bottom, top)`` of the C-space picture: θ1 and θ2 from −π to π
 CSPACE_EXTENT = (-np.pi, np.pi, -np.pi, np.pi)
 
 _TINT = 0.45  # how much white is mixed into an obstacle's colour in the C-space picture
@@ -155,10 +155,11 @@ def plot_cspace(ax, image):
 
 
 def wrap_path(q) -> np.ndarray:
-    """A continuous joint path ``q`` (K, 2) folded into ``[−π, π)²`` for drawing on the torus.
+    """A continuous joint path ``q`` (K, 2) folded into ``(−π, π]²`` for drawing on the torus.
 
-    Angles are wrapped to ``[−π, π)``; where a step jumps by more than π (the path crossed
-    θ = ±π), a row of NaN is inserted, so that matplotlib breaks the line there instead of
+    Angles are wrapped to ``(−π, π]`` (kinlib's one wrap interval); where a step jumps by
+    more than π (the path crossed θ = ±π), a row of NaN is inserted, so that matplotlib
+    breaks the line there instead of
     drawing it across the picture.
 
     Returns
@@ -168,6 +169,6 @@ def wrap_path(q) -> np.ndarray:
     a = as_array(q, "q", (2,))
     if a.ndim != 2 or len(a) == 0:
         raise KinlibError(f"q: expected a path of configurations (K, 2), got shape {a.shape}")
-    w = (a + np.pi) % (2 * np.pi) - np.pi
+    w = wrap_angle(a)
     jump = np.abs(np.diff(w, axis=0)).max(axis=1) > np.pi
     return np.insert(w, np.flatnonzero(jump) + 1, np.nan, axis=0)

@@ -83,7 +83,7 @@ def axis_angle_from_matrix(R):
     ``[1, 0, 0]`` is returned; at θ = π, u and −u are the same rotation.
 
     >>> axis, angle = axis_angle_from_matrix(matrix_from_axis_angle([1.0, 1.0, 0.0], np.pi))
-    >>> (axis * np.sign(axis[0])).round(12) + 0.0, round(float(angle), 12)
+    >>> (axis * np.sign(axis[0])).round(12) + 0.0, round(angle, 12)
     (array([0.70710678, 0.70710678, 0.        ]), 3.14159265359)
     """
     return axis_angle_from_quat(quat_from_matrix(R))
@@ -134,4 +134,4 @@ def log_so3(R):
     array([ 0.1, -0.2,  0.3])
     """
     axis, angle = axis_angle_from_matrix(R)
-    return axis * angle[..., None]
+    return axis * np.asarray(angle)[..., None]

@@ -21,7 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, as_unit_vectors, broadcast, fmt_index
+from .._validate import as_array, as_unit_vectors, broadcast, fmt_index, py_scalar
+from ..conventions import ROTATION_TOL
 from ..errors import KinlibError
 from .quaternions import (
     matrix_from_quat,
@@ -43,7 +44,7 @@ __all__ = [
     "dual_quat_sclerp",
 ]
 
-_TOL = 1e-6
+_TOL = ROTATION_TOL  # a unit dual quaternion is a rigid transform: the same acceptance
 
 
 def _pure(v):
@@ -157,6 +158,7 @@ def screw_from_dual_quat(dq):
     :math:`c = \tfrac12\left(t_\perp + \cot\tfrac\theta2\, l \times t\right)` for the
     translation t. A pure translation (θ = 0) has l = t/|t|, d = |t| and m = 0 (the axis
     through the origin; any parallel line would do); the identity returns l = [0, 0, 1].
+    For one dual quaternion θ and d are Python floats; for a batch, arrays.
 
     A quarter turn about the vertical line through c = (1, 0, 0) takes the origin to
     R(0 − c) + c = (1, −1, 0); add a lift of 0.5 along the line:
@@ -164,7 +166,7 @@ def screw_from_dual_quat(dq):
     >>> from kinlib import rotz, transform
     >>> T = transform(rotz(np.pi / 2), [1.0, -1.0, 0.5])
     >>> l, m, theta, d = screw_from_dual_quat(dual_quat_from_transform(T))
-    >>> l.round(12) + 0.0, m.round(12) + 0.0, round(float(theta), 12), round(float(d), 12)
+    >>> l.round(12) + 0.0, m.round(12) + 0.0, round(theta, 12), round(d, 12)
     (array([0., 0., 1.]), array([ 0., -1.,  0.]), 1.570796326795, 0.5)
     """
     qr, qd = _unit_dq(dq)
@@ -186,7 +188,7 @@ def screw_from_dual_quat(dq):
     cot = np.where(rot, np.cos(half) / np.where(rot, np.sin(half), 1.0), 0.0)
     m = 0.5 * (np.cross(t, lvec) + cot[..., None] * t_perp)
     m = np.where(rot[..., None], m, 0.0)
-    return lvec, m, theta, d
+    return lvec, m, py_scalar(theta), py_scalar(d)
 
 
 def dual_quat_from_screw(l, m, theta, d):

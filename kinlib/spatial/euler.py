@@ -20,7 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, as_tol, is_symbolic, parse_seq
+from .._validate import as_array, as_tol, is_symbolic, parse_seq, py_scalar, wrap_angle
+from ..conventions import GIMBAL_TOL, ROUNDING_TOL
 from .rotations import check_rotation
 
 __all__ = ["matrix_from_euler", "euler_from_matrix", "euler_gimbal_lock", "EULER_SEQUENCES"]
@@ -32,10 +33,9 @@ EULER_SEQUENCES = tuple(
     for s in (base.upper(), base)
 )
 
-# Gimbal lock is declared when the middle angle is within this many radians of its
-# singular value: far above the ~1e-16 rounding of a matrix built at the singularity, and
-# small enough that setting the first angle to 0 changes the matrix by < 1e-11.
-_LOCK_TOL = 1e-12
+# Gimbal lock is declared when the middle angle is within ROUNDING_TOL (1e-12) radians of
+# its singular value: far above the ~1e-16 rounding of a matrix built at the singularity,
+# and small enough that setting the first angle to 0 changes the matrix by < 1e-11.
 
 
 def _parity(i: int, j: int) -> float:
@@ -106,11 +106,6 @@ def matrix_from_euler(angles, seq: str):
     return np.stack(cols, axis=-1)
 
 
-def _wrap(x):
-    """Angles in (−π, π] (atan2 gives −π for a −0.0 argument)."""
-    return np.where(x <= -np.pi, x + 2 * np.pi, x) + 0.0
-
-
 def _solve(R, axes, zero_first: bool, tol: float):
     """Intrinsic angles of ``R`` for ``axes``; at lock the first (or the third) angle is 0."""
     a1, a2, a3 = axes
@@ -147,10 +142,11 @@ def _solve(R, axes, zero_first: bool, tol: float):
         # Lock with the third angle 0: column j of R = R_i(a) e_j.
         a = np.where(lock, np.arctan2(eps * Rij(k, j), Rij(j, j)), a)
         c = np.where(lock, 0.0, c)
-    return np.stack([_wrap(a), b + 0.0, _wrap(c)], axis=-1)
+    # (−π, π]: atan2 gives −π for a −0.0 argument
+    return np.stack([wrap_angle(a), b + 0.0, wrap_angle(c)], axis=-1)
 
 
-def euler_from_matrix(R, seq: str, *, tol: float = _LOCK_TOL):
+def euler_from_matrix(R, seq: str, *, tol: float = ROUNDING_TOL):
     r"""Euler (intrinsic) or fixed (extrinsic) angles of a rotation matrix.
 
     Parameters
@@ -192,13 +188,14 @@ def euler_from_matrix(R, seq: str, *, tol: float = _LOCK_TOL):
     return _solve(Rm, axes[::-1], False, tol)[..., ::-1]
 
 
-def euler_gimbal_lock(R, seq: str, tol: float = 1e-6):
+def euler_gimbal_lock(R, seq: str, tol: float = GIMBAL_TOL):
     r"""Whether the middle angle of ``seq`` is within ``tol`` radians of its singular value.
 
     The singular values are ±π/2 for sequences of three different axes and 0 or π for
     sequences whose first and last axes are the same. There the first and third axes line
     up, the rotation loses a degree of freedom, and only the sum or difference of the outer
-    angles is defined. Returns a bool (or a bool array for a batch).
+    angles is defined. Returns a Python ``bool`` for one matrix, a bool ndarray for a batch.
+    The default ``tol`` is :data:`kinlib.conventions.GIMBAL_TOL`.
 
     >>> euler_gimbal_lock(matrix_from_euler([0.3, np.pi / 2, -0.2], "ZYX"), "ZYX")
     True
@@ -220,5 +217,4 @@ def euler_gimbal_lock(R, seq: str, tol: float = 1e-6):
         sb = a[..., i, k]
         cb = np.hypot(a[..., i, i], a[..., i, j])
         dist = np.arctan2(cb, np.abs(sb))
-    out = dist <= tol
-    return out if out.ndim else bool(out)
+    return py_scalar(dist <= tol)

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._accel import MIN_BATCH, kernels
-from .._validate import as_array, as_unit_vectors, broadcast, fmt_index, unit_rows
+from .._validate import as_array, as_unit_vectors, broadcast, fmt_index, py_scalar, unit_rows
 from ..errors import KinlibError
 from .rotations import check_rotation
 
@@ -158,10 +158,10 @@ def axis_angle_from_quat(q):
     """``(axis, angle)`` of a quaternion, with the angle in [0, π].
 
     ``q`` is normalised first. For the identity the axis is undefined and ``[1, 0, 0]``
-    is returned.
+    is returned. The angle is a Python float for one quaternion, an array for a batch.
 
     >>> axis, angle = axis_angle_from_quat([np.sqrt(0.5), 0.0, np.sqrt(0.5), 0.0])
-    >>> axis.round(12) + 0.0, round(float(angle), 12)
+    >>> axis.round(12) + 0.0, round(angle, 12)
     (array([0., 1., 0.]), 1.570796326795)
     """
     a = quat_normalize(q)
@@ -172,7 +172,7 @@ def axis_angle_from_quat(q):
     angle = 2.0 * np.arctan2(s, a[..., 0])
     tiny = s <= 1e-300
     axis = np.where(tiny[..., None], [1.0, 0.0, 0.0], v / np.where(tiny, 1.0, s)[..., None])
-    return axis, angle
+    return axis, py_scalar(angle)
 
 
 def matrix_from_quat(q):

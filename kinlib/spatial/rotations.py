@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._accel import MIN_BATCH, kernels
-from .._validate import as_array, as_tol, fmt_index, is_symbolic
-from ..conventions import ROTATION_TOL
+from .._validate import as_array, as_tol, fmt_index, is_symbolic, py_scalar
+from ..conventions import ROTATION_TOL, SKEW_TOL
 from ..errors import KinlibError
 
 __all__ = [
@@ -115,7 +115,7 @@ def _is_sympy_matrix(S) -> bool:
     return (type(S).__module__ or "").startswith("sympy")
 
 
-def vee(S, tol: float = 1e-9):
+def vee(S, tol: float = SKEW_TOL):
     r"""The vector of a skew-symmetric matrix: the inverse of :func:`skew`.
 
     Raises :class:`KinlibError` if ``S`` is not skew-symmetric within ``tol`` (relative to
@@ -191,7 +191,7 @@ def _rotation_errors_numpy(a):
 def is_rotation(R, tol: float = ROTATION_TOL):
     """Whether ``R`` is a rotation matrix: ``max |RᵀR − I| <= tol`` and ``|det R − 1| <= tol``.
 
-    Batched: returns a boolean array of the batch shape (a numpy bool for one matrix).
+    Batched: returns a bool ndarray of the batch shape (a Python ``bool`` for one matrix).
     Input that is not numeric or not of shape (..., 3, 3) raises :class:`KinlibError`;
     NaN/inf gives ``False``.
 
@@ -204,15 +204,15 @@ def is_rotation(R, tol: float = ROTATION_TOL):
     tol = as_tol(tol)
     finite = np.isfinite(a).all(axis=(-2, -1))
     err, det = rotation_errors(np.where(finite[..., None, None], a, 0.0))
-    ok = finite & (err <= tol) & (np.abs(det - 1.0) <= tol)
-    return ok if ok.ndim else bool(ok)
+    return py_scalar(finite & (err <= tol) & (np.abs(det - 1.0) <= tol))
 
 
-def check_rotation(R, tol: float = ROTATION_TOL, name: str = "R") -> np.ndarray:
+def check_rotation(R, name: str = "R", *, tol: float = ROTATION_TOL) -> np.ndarray:
     """Return ``R`` as a float array if it is a rotation matrix, else raise :class:`KinlibError`.
 
-    The message says which property failed (orthonormality or det = +1), by how much,
-    and, for a batch, which matrix.
+    ``name`` is what the message calls the matrix; ``tol`` bounds max |RᵀR − I| and
+    |det R − 1| (as in :func:`is_rotation`). The message says which property failed
+    (orthonormality or det = +1), by how much, and, for a batch, which matrix.
 
     >>> check_rotation(np.eye(3)).shape
     (3, 3)
@@ -250,7 +250,7 @@ def nearest_rotation(M) -> np.ndarray:
     where :math:`d = \det(U V^T)` keeps the determinant at +1.
 
     >>> M = rotz(0.3) + 1e-3  # a rotation with noise
-    >>> bool(is_rotation(nearest_rotation(M), tol=1e-12))
+    >>> is_rotation(nearest_rotation(M), tol=1e-12)
     True
     """
     a = as_array(M, "M", (3, 3))

@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, is_symbolic, unit_rows
+from ..conventions import SKEW_TOL
 from ..errors import KinlibError
 from .axis_angle import _rodrigues_matrix, log_so3
 from .rotations import skew
@@ -59,7 +60,7 @@ def hat_se3(xi):
     return X
 
 
-def vee_se3(X, tol: float = 1e-9):
+def vee_se3(X, tol: float = SKEW_TOL):
     r"""The twist ``[v; ω]`` of a 4×4 se(3) matrix: the inverse of :func:`hat_se3`.
 
     Raises :class:`KinlibError` unless the top-left block is skew-symmetric and the bottom

@@ -53,10 +53,19 @@ def transform(R=None, p=None):
     return T
 
 
-def check_transform(T, name: str = "T", tol: float = ROTATION_TOL) -> np.ndarray:
+def check_transform(T, name: str = "T", *, tol: float = ROTATION_TOL) -> np.ndarray:
     """``T`` as a float array of shape (..., 4, 4) if it is a rigid transform, else raise.
 
-    Checks the bottom row ``[0, 0, 0, 1]`` and that the upper-left 3×3 block is a rotation.
+    Checks the bottom row ``[0, 0, 0, 1]`` and that the upper-left 3×3 block is a rotation
+    (both to ``tol``, as :func:`~kinlib.check_rotation`); ``name`` is what the message
+    calls ``T``. The same argument order as :func:`~kinlib.check_rotation`.
+
+    >>> check_transform(np.eye(4)).shape
+    (4, 4)
+    >>> check_transform(np.ones((4, 4)), "T_ee")
+    Traceback (most recent call last):
+    ...
+    kinlib.errors.KinlibError: T_ee: the bottom row of a homogeneous transform must be ...
     """
     a = as_array(T, name, (4, 4))
     tol = as_tol(tol)
@@ -69,7 +78,7 @@ def check_transform(T, name: str = "T", tol: float = ROTATION_TOL) -> np.ndarray
             f"{name}{where}: the bottom row of a homogeneous transform must be [0, 0, 0, 1], "
             f"got {np.array2string(row, precision=4)}"
         )
-    check_rotation(a[..., :3, :3], tol, name=f"{name}[:3, :3]")
+    check_rotation(a[..., :3, :3], f"{name}[:3, :3]", tol=tol)
     return a
 
 

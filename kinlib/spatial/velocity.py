@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, as_tol, broadcast, fmt_index, is_symbolic, parse_seq
+from .._validate import as_array, as_tol, broadcast, fmt_index, is_symbolic, parse_seq, py_scalar
+from ..conventions import GIMBAL_TOL, SKEW_TOL
 from ..errors import KinlibError
 from .rotations import check_rotation, rotx, roty, rotz, skew, vee
 
@@ -20,7 +21,7 @@ __all__ = ["angular_velocity", "rotation_derivative", "add_angular_velocities",
            "point_velocity", "euler_rate_matrix", "euler_rates_singular"]
 
 
-def angular_velocity(R, R_dot, tol: float = 1e-8) -> np.ndarray:
+def angular_velocity(R, R_dot, tol: float = SKEW_TOL) -> np.ndarray:
     """ω with ``Ṙ Rᵀ = S(ω)`` (the angular velocity in the fixed frame), batched.
 
     ``R_dot`` must be the derivative of a rotation: ``Ṙ Rᵀ`` skew-symmetric to within
@@ -139,8 +140,19 @@ def euler_rate_matrix(angles, seq: str):
     return E
 
 
-def euler_rates_singular(angles, seq: str, tol: float = 1e-9) -> np.ndarray:
+def euler_rates_singular(angles, seq: str, tol: float = GIMBAL_TOL) -> bool | np.ndarray:
     """True where ``|det E(φ)| < tol``: the Euler rates cannot represent every ω (gimbal
-    lock: middle angle ±π/2 for three different axes, 0 or π when first = last)."""
+    lock: middle angle ±π/2 for three different axes, 0 or π when first = last).
+
+    ``|det E|`` is the sine of the middle angle's distance to its singular value, so the
+    default (:data:`kinlib.conventions.GIMBAL_TOL`) agrees with
+    :func:`~kinlib.euler_gimbal_lock`'s. A Python ``bool`` for one set of angles, a bool
+    ndarray for a batch.
+
+    >>> euler_rates_singular([0.3, np.pi / 2, -0.8], "ZYX")
+    True
+    >>> euler_rates_singular([[0.3, 0.2, -0.8], [0.0, 0.0, 0.0]], "ZYZ")
+    array([False,  True])
+    """
     E = euler_rate_matrix(as_array(angles, "angles", (3,)), seq)
-    return np.abs(np.linalg.det(E)) < as_tol(tol)
+    return py_scalar(np.abs(np.linalg.det(E)) < as_tol(tol))

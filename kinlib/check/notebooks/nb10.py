@@ -38,7 +38,9 @@ _C2_MISTAKES = (
 
 
 def _wrap(a):
-    return (np.asarray(a, dtype=float) + np.pi) % (2 * np.pi) - np.pi
+    from ..._validate import wrap_angle  # kinlib's one wrap: into (−π, π]
+
+    return wrap_angle(a)
 
 
 def _down(x, y, l1, l2):
@@ -135,7 +137,7 @@ def _n_solutions(r, l1=L1, l2=L2, tol=1e-6):
     from ...kinematics.planar import planar_2r_ik
 
     up, down = (planar_2r_ik(r, 0.0, l1, l2, elbow=e) for e in ("up", "down"))
-    if not up.reachable:
+    if not up.success:
         return 0
     same = abs(_wrap(up.theta1 - down.theta1)) < tol and abs(up.theta2 - down.theta2) < tol
     return 1 if same else 2
@@ -182,7 +184,7 @@ EXERCISES = [
           Mistake("one inside", "inside the annulus |c2| < 1, so s2 = ±√(1 − c2²) has two "
                                 "values: two elbows", lambda: [1, 1, 0]),
           Mistake("closest", "outside the annulus there is no solution: kinlib returns the "
-                             "closest configuration, but with reachable=False — it does not "
+                             "closest configuration, but with success=False — it does not "
                              "reach the target", lambda: [1, 2, 1]),
           what="three numbers",
           explain="inside the annulus |c2| < 1 gives two values of s2, two elbows; on a circle "

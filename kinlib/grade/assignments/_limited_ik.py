@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 import kinlib as kl
+from kinlib._validate import wrap_angle
 
 from .._checks import RIGHT, Check, Verdict, as_numeric, fmt
 
@@ -122,7 +123,7 @@ def solutions_3r(T_local, l1, l2, l3) -> list[np.ndarray]:
     out = []
     for elbow in ("up", "down"):
         s = kl.planar_2r_ik(w[0], w[1], l1, l2, elbow=elbow)
-        if bool(s.reachable):
+        if s.success:
             t1, t2 = float(s.theta1), float(s.theta2)
             out.append(np.array([t1, t2, phi - t1 - t2]))
     return out
@@ -159,7 +160,7 @@ def _random_pose(rng):
 def _angle_outside(rng, lo, hi, margin=0.25):
     """An angle in (−π, π] at least ``margin`` outside [lo, hi] (width below 2π − 2 margin)."""
     t = rng.uniform(hi + margin, lo + 2 * np.pi - margin)
-    return float((t + np.pi) % (2 * np.pi) - np.pi)
+    return float(wrap_angle(t))
 
 
 def _planar_unreachable(rng, kinds):
