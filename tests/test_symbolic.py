@@ -285,10 +285,37 @@ def test_symbolic_vee_inverts_skew_and_rejects_non_skew():
     assert kl.vee(kl.skew([a, b, c])) == sp.Matrix([a, b, c])
     al = sp.symbols("alpha", real=True)
     R = kl.rotx(al)
-    # R S(v) Rᵀ is skew only after cos² + sin² = 1: vee must still prove it
-    S = (R * kl.skew([a, b, c]) * R.T)
+    S = (R * kl.skew([a, b, c]) * R.T)  # skew already as a polynomial: S + Sᵀ expands to 0
     assert sp.simplify(kl.vee(S) - R * sp.Matrix([a, b, c])) == sp.zeros(3, 1)
     with pytest.raises(kl.KinlibError, match="skew-symmetric"):
         kl.vee(sp.Matrix([[0, a, 0], [a, 0, 0], [0, 0, 0]]))
     with pytest.raises(kl.KinlibError, match="3×3"):
         kl.vee(sp.Matrix([[0, a], [-a, 0]]))
+
+
+def test_symbolic_vee_proves_skewness_by_trig_reduce_only():
+    # Ṙ Rᵀ of R = Rz(α) Ry(β) is skew only after sin² + cos² = 1: vee proves it with
+    # trig_reduce (expand alone does not), and reads off ω = α̇ z + β̇ Rz(α) y (typed)
+    t = sp.symbols("t", real=True)
+    al, be = sp.Function("alpha")(t), sp.Function("beta")(t)
+    ad, bd, A, B = sp.symbols("alpha_dot beta_dot alpha beta", real=True)
+    R = kl.rotz(al) * kl.roty(be)
+    W = (R.diff(t) * R.T).subs({al.diff(t): ad, be.diff(t): bd}).subs({al: A, be: B})
+    assert sp.expand(W + W.T) != sp.zeros(3, 3)
+    omega = sp.Matrix([-sp.sin(A) * bd, sp.cos(A) * bd, ad])
+    assert sp.expand(kl.vee(W) - omega) != sp.zeros(3, 1)  # equal only after the reduction
+    assert kl.symbolic.trig_reduce(kl.vee(W) - omega) == sp.zeros(3, 1)
+    # skew only under a constraint trig_reduce is not told (a unit axis), or by an identity
+    # outside its rules (cosh² - sinh² = 1, which sympy.simplify would find): refused, the
+    # entry named, no simplify() search
+    kx, ky, kz = sp.symbols("k_x k_y k_z", real=True)
+    off_unit = kl.skew([kx, ky, kz]) + (kx**2 + ky**2 + kz**2 - 1) * sp.diag(0, 1, 0)
+    assert kl.vee(kl.symbolic.trig_reduce(off_unit, unit=[kx, ky, kz])) == sp.Matrix([kx, ky, kz])
+    with pytest.raises(kl.KinlibError, match=r"S\[1, 1\] \+ S\[1, 1\] = .*unit=") as info:
+        kl.vee(off_unit)
+    assert "k_x**2" in str(info.value)
+    hyper = kl.skew([x, y, z])
+    hyper[0, 1] = (sp.cosh(x) ** 2 - sp.sinh(x) ** 2) * hyper[0, 1]
+    assert sp.simplify(hyper + hyper.T) == sp.zeros(3, 3)
+    with pytest.raises(kl.KinlibError, match=r"S\[0, 1\] \+ S\[1, 0\]"):
+        kl.vee(hyper)

@@ -110,20 +110,27 @@ def _angle_scales(e: sp.Expr) -> dict[sp.Symbol, int]:
 
 
 def _reduce_poly(e: sp.Expr, rules: dict[sp.Symbol, sp.Expr]) -> sp.Expr:
-    """Replace ``x**n`` (n ≥ 2) by ``x**(n % 2) * rules[x]**(n // 2)`` until none is left."""
+    """Replace every ``x**n`` (n ≥ 2, x a key of ``rules``) by ``x**(n % 2) * rules[x]**(n // 2)``.
+
+    One pass is complete: no right-hand side contains a key (``1 - c**2`` for ``s``; for the
+    last component of a unit vector, the other components, and unit vectors share no
+    symbol), so expanding the result makes no new power of a key. Rules that break this
+    would need more passes, in a loop that might not end: they are refused.
+    """
     if not rules:
         return e
-    for _ in range(8):  # each pass removes one layer of powers; 2 suffice in practice
-        powers = [
-            p for p in e.atoms(sp.Pow)
-            if p.base in rules and p.exp.is_Integer and p.exp >= 2
-        ]
-        if not powers:
-            return e
-        e = sp.expand(e.xreplace({
-            p: p.base ** (int(p.exp) % 2) * rules[p.base] ** (int(p.exp) // 2) for p in powers
-        }))
-    return e
+    keys = set(rules)
+    tangled = sorted((str(x) for x, r in rules.items() if r.free_symbols & keys))
+    if tangled:
+        raise KinlibError(
+            f"trig_reduce: the replacement for {', '.join(tangled)} contains a symbol that is "
+            "itself replaced; one pass would leave powers behind"
+        )
+    powers = {
+        p: p.base ** (int(p.exp) % 2) * rules[p.base] ** (int(p.exp) // 2)
+        for p in e.atoms(sp.Pow) if p.base in rules and p.exp.is_Integer and p.exp >= 2
+    }
+    return sp.expand(e.xreplace(powers)) if powers else e
 
 
 def _reduce_scalar(e: sp.Expr, groups) -> sp.Expr:

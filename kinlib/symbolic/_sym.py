@@ -63,14 +63,26 @@ def skew(v) -> sp.Matrix:
 
 
 def vee(S) -> sp.Matrix:
-    """The 3×1 vector of a symbolic skew-symmetric matrix; an error unless S = −Sᵀ provably."""
+    """The 3×1 vector of a symbolic skew-symmetric matrix; an error unless S = −Sᵀ provably.
+
+    Provably by kinlib.symbolic's rule, without a ``simplify()`` search: each entry of
+    S + Sᵀ expands, or reduces by :func:`kinlib.symbolic.trig_reduce`, to exactly 0. So
+    Ṙ Rᵀ of a product of rotations passes (its skewness needs sin² + cos² = 1); a matrix
+    that is skew only for a unit axis, or by an identity outside trig_reduce's rules, is
+    refused, with the entry that did not reduce.
+    """
     from . import trig_reduce
 
     M = matrix_3x3(S, "S")
-    for e in M + M.T:
-        if sp.expand(e) != 0 and trig_reduce(e) != 0 and sp.simplify(e) != 0:
-            raise KinlibError(f"S: expected a skew-symmetric matrix (S = -Sᵀ), but an entry "
-                              f"of S + Sᵀ is {e}, which does not simplify to 0")
+    for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)):
+        e = M[i, j] + M[j, i]
+        if sp.expand(e) != 0 and trig_reduce(e) != 0:
+            text = str(e) if len(str(e)) <= 80 else str(e)[:77] + "..."
+            raise KinlibError(
+                f"S: expected a skew-symmetric matrix (S = -Sᵀ), but S[{i}, {j}] + S[{j}, {i}] "
+                f"= {text} does not reduce to 0 (kinlib.symbolic.trig_reduce); if S is skew "
+                "only for a unit axis, reduce it first: trig_reduce(S, unit=[kx, ky, kz])"
+            )
     return sp.Matrix([M[2, 1], M[0, 2], M[1, 0]])
 
 
