@@ -73,12 +73,12 @@ def vee_se3(X, tol: float = SKEW_TOL):
     if is_symbolic(X):
         import sympy as sp
 
-        M = _sym_matrix(X, (4, 4), "X")
-        if any(sp.simplify(e) != 0 for e in M[3, :]):
-            raise KinlibError(f"X: the bottom row of an se(3) matrix must be 0, got "
-                              f"{list(M[3, :])}")
         from ..symbolic import _sym
 
+        M = _sym.matrix(X, (4, 4), "X")
+        if any(sp.expand(e) != 0 for e in M[3, :]):
+            raise KinlibError(f"X: the bottom row of an se(3) matrix must be 0, got "
+                              f"{list(M[3, :])}")
         w = _sym.vee(M[:3, :3])
         return sp.Matrix([*M[:3, 3], *w])
     a = as_array(X, "X", (4, 4))
@@ -235,7 +235,7 @@ def adjoint(T):
 
         from ..symbolic import _sym
 
-        M = _sym_matrix(T, (4, 4), "T")
+        M = _sym.matrix(T, (4, 4), "T")
         R, p = M[:3, :3], M[:3, 3]
         A = sp.zeros(6, 6)
         A[:3, :3] = R
@@ -249,17 +249,3 @@ def adjoint(T):
     A[..., 3:, 3:] = R
     A[..., :3, 3:] = skew(p) @ R
     return A
-
-
-def _sym_matrix(X, shape, name):
-    import sympy as sp
-
-    try:
-        M = None if isinstance(X, str | bytes) else sp.Matrix(X)
-    except (sp.SympifyError, TypeError, ValueError):
-        M = None
-    if M is None or M.shape != shape:
-        got = "" if M is None else f" of shape {M.shape}"
-        raise KinlibError(f"{name}: expected a {shape[0]}×{shape[1]} matrix, got "
-                          f"{type(X).__name__}{got}")
-    return M

@@ -11,7 +11,7 @@ import sympy as sp
 from ..errors import KinlibError
 
 __all__ = [
-    "axis_angle", "axis_rotation", "dh", "matrix_3x3", "scalar", "skew", "transform", "vector",
+    "axis_angle", "axis_rotation", "dh", "matrix", "scalar", "skew", "transform", "vector",
     "vee",
 ]
 
@@ -73,7 +73,7 @@ def vee(S) -> sp.Matrix:
     """
     from . import trig_reduce
 
-    M = matrix_3x3(S, "S")
+    M = matrix(S, (3, 3), "S")
     for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)):
         e = M[i, j] + M[j, i]
         if sp.expand(e) != 0 and trig_reduce(e) != 0:
@@ -102,22 +102,21 @@ def axis_angle(axis, angle) -> sp.Matrix:
     return c * sp.eye(3) + s * skew(u) + (1 - c) * (u * u.T)
 
 
-def matrix_3x3(R, name: str) -> sp.Matrix:
-    """``R`` as a 3×3 sympy Matrix of expressions."""
+def matrix(X, shape: tuple[int, int], name: str) -> sp.Matrix:
+    """``X`` as a sympy Matrix of expressions of the given shape, else a KinlibError."""
     try:
-        M = None if isinstance(R, str | bytes) else sp.Matrix(R)
+        M = None if isinstance(X, str | bytes) else sp.Matrix(X)
     except (sp.SympifyError, TypeError, ValueError):  # ValueError includes ShapeError
         M = None
-    if M is None or M.shape != (3, 3):
+    if M is None or M.shape != shape:
         got = "" if M is None else f" of shape {M.shape}"
-        raise KinlibError(f"{name}: expected a 3×3 matrix, got {type(R).__name__}{got}")
-    for e in M:
-        scalar(e, name)
+        raise KinlibError(f"{name}: expected a {shape[0]}×{shape[1]} matrix, got "
+                          f"{type(X).__name__}{got}")
     return M
 
 
 def transform(R=None, p=None) -> sp.Matrix:
-    Rm = sp.eye(3) if R is None else matrix_3x3(R, "R")
+    Rm = sp.eye(3) if R is None else matrix(R, (3, 3), "R")
     pm = sp.zeros(3, 1) if p is None else sp.Matrix(vector(p, "p"))
     T = sp.eye(4)
     T[:3, :3] = Rm
