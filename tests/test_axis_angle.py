@@ -326,3 +326,25 @@ def test_log_of_large_rotation_vectors_is_the_short_equivalent(u, theta):
     folded = theta % (2 * PI)
     folded = min(folded, 2 * PI - folded)
     assert abs(np.linalg.norm(w) - folded) < 1e-9
+
+
+def test_the_unchecked_log_of_the_ik_loop_is_log_so3():
+    """The IK loop takes the log of checked rotations without re-checking them
+    (_log_so3_unchecked): the same rotation vectors as log_so3, to a few ulps,
+    at random rotations and at the edges (no rotation, tiny angles, half turns)."""
+    from kinlib.spatial.axis_angle import _log_so3_unchecked
+
+    exp_so3, log_so3 = kl.exp_so3, kl.log_so3
+
+    rng = np.random.default_rng(7)
+    w = rng.normal(size=(200, 3))
+    angles = np.concatenate([rng.uniform(0, np.pi, 190), [0.0, 1e-300, 1e-12, 1e-6, 1.0,
+                                                          np.pi - 1e-9, np.pi, np.pi, 3.0,
+                                                          np.pi - 1e-12]])
+    w = w / np.linalg.norm(w, axis=1, keepdims=True) * angles[:, None]
+    R = exp_so3(w)
+    fast, reference = _log_so3_unchecked(R), log_so3(R)
+    near_pi = angles > np.pi - 1e-6  # ±u are the same half turn: compare the rotations
+    np.testing.assert_allclose(fast[~near_pi], reference[~near_pi], rtol=0, atol=2e-15)
+    np.testing.assert_allclose(exp_so3(fast), R, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(np.linalg.norm(fast, axis=1), angles, rtol=0, atol=1e-8)

@@ -35,7 +35,14 @@ class FKTable:
         self.mult = np.ones(n)
         self.offset = np.zeros(n)
         self.M = np.zeros((n, 3, 4, 4))
+        #: each joint's post transform inverted (closed form): the Jacobian's joint frames
+        self.post_inv = np.zeros((n, 4, 4))
+        self.axis = np.zeros((n, 3))
         for j, jt in enumerate(joints_in_order):
+            self.axis[j] = jt.axis
+            self.post_inv[j, :3, :3] = jt.post[:3, :3].T
+            self.post_inv[j, :3, 3] = -jt.post[:3, :3].T @ jt.post[:3, 3]
+            self.post_inv[j, 3, 3] = 1.0
             self.parent[j] = frame_of_link[jt.parent]
             self.kind[j] = _KIND[jt.type]
             if jt.type != "fixed":
@@ -60,7 +67,7 @@ class FKTable:
         self.ints = np.ascontiguousarray(np.stack([self.parent, self.kind, self.qidx]))
         self.floats = np.ascontiguousarray(np.stack([self.mult, self.offset]))
         for a in (self.parent, self.kind, self.qidx, self.mult, self.offset, self.M, self.ints,
-                  self.floats):
+                  self.floats, self.post_inv, self.axis):
             a.setflags(write=False)
 
     def coefficients(self, q: np.ndarray, sel: np.ndarray):
@@ -173,26 +180,35 @@ def run_chain(chain: ChainTable, table: FKTable, q: np.ndarray, sel: np.ndarray,
     return frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a × b`` over the last axis (np.cross's axis handling costs more than the products
+    for a few vectors)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
 def _jacobian_numpy(table: FKTable, joints, frames, q_cols: int, sel: np.ndarray):
-    """Reference Jacobian from the tree's frames (N, 1 + n, 4, 4) of the path ``sel``."""
+    """Reference Jacobian from the tree's frames (N, 1 + n, 4, 4) of the path ``sel``: for
+    every moving joint on it at once, its world axis z and origin o from its frame
+    ``origin · motion(q)`` (the child's frame times the inverse post transform); column
+    ``[z × (p − o); z]`` (revolute) or ``[z; 0]`` (prismatic), times the mimic multiplier,
+    added into the column of the joint that drives it."""
     N = frames.shape[0]
     J = np.zeros((N, 6, q_cols))
     if len(sel) == 0:
         return J
+    moving = sel[table.kind[sel] != 0]
+    if len(moving) == 0:
+        return J
     p_end = frames[:, sel[-1] + 1, :3, 3]
-    for j in sel:
-        kind = table.kind[j]
-        if kind == 0:
-            continue
-        jt = joints[j]
-        G = frames[:, j + 1] @ np.linalg.inv(jt.post)  # origin @ motion(q): the joint frame
-        z = G[:, :3, :3] @ jt.axis
-        col, w = table.qidx[j], table.mult[j]
-        if kind == 1:
-            J[:, :3, col] += w * np.cross(z, p_end - G[:, :3, 3])
-            J[:, 3:, col] += w * z
-        else:
-            J[:, :3, col] += w * z
+    G = frames[:, moving + 1] @ table.post_inv[moving]            # (N, k, 4, 4)
+    z = np.einsum("nkij,kj->nki", G[..., :3, :3], table.axis[moving])
+    revolute = (table.kind[moving] == 1)[:, None]
+    linear = np.where(revolute, _cross(z, p_end[:, None, :] - G[..., :3, 3]), z)
+    angular = np.where(revolute, z, 0.0)
+    columns = np.concatenate([linear, angular], axis=-1) * table.mult[moving][:, None]
+    np.add.at(np.moveaxis(J, 2, 0), table.qidx[moving], np.moveaxis(columns, 1, 0))
     return J
 
 

@@ -31,7 +31,7 @@ import numpy as np
 from .._validate import as_array, as_tol, wrap_angle
 from ..conventions import IK_POSITION_TOL, IK_ROTATION_TOL
 from ..errors import KinlibError
-from ..spatial.axis_angle import log_so3
+from ..spatial.axis_angle import _log_so3_unchecked, log_so3
 from ..spatial.transforms import check_transform
 
 __all__ = ["IKResult", "solve_ik", "pose_error", "dls_step"]
@@ -102,7 +102,7 @@ def dls_step(J, e, damping) -> np.ndarray:
 
 def _errors(T_target, T, position_only):
     e_p = T_target[:, :3, 3] - T[:, :3, 3]
-    e_r = log_so3(T_target[:, :3, :3] @ np.swapaxes(T[:, :3, :3], -1, -2))
+    e_r = _log_so3_unchecked(T_target[:, :3, :3] @ np.swapaxes(T[:, :3, :3], -1, -2))
     e = e_p if position_only else np.concatenate([e_p, e_r], axis=1)
     return e, np.linalg.norm(e_p, axis=1), np.linalg.norm(e_r, axis=1)
 
