@@ -59,6 +59,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_fk.py
 	$(BIN)/python bench/bench_diffkin.py
 	$(BIN)/python bench/bench_poe.py
+	$(BIN)/python bench/bench_numpy.py
 	$(BIN)/python bench/bench_grader.py
 
 clean:

@@ -1,0 +1,82 @@
+"""kinlib without a compiler: the numpy path against the compiled (numba) one, one run.
+
+Run with ``make bench`` (or ``python bench/bench_numpy.py [--repeat R]``).
+
+A student who installs kinlib without the ``fast`` extra, or on a platform without numba,
+gets the numpy path (``KINLIB_NUMBA=0`` forces it). Both paths run here in one process,
+interleaved: the numpy one by switching the compiled kernels off for the call. Read:
+
+* single ``fk``: one PUMA 560 configuration per call through ``robot.fk`` (checks
+  included), numpy / compiled (goal: at most 5);
+* IK per iteration: one unreachable PUMA 560 target (every restart runs to its end, so
+  the iterations are many and alike), seconds per iteration, numpy / compiled (goal: at
+  most 10);
+* PUMA 560 IK on the numpy path, seconds per target: a reachable target from the default
+  start (goal: 20 ms) and an unreachable one (goal: 0.5 s), with ``robot.ik``'s defaults
+  (tolerance 1e-6 m and rad, 30 iterations, 100 restarts).
+
+The machine is noisy: the ratios, taken in one run, are what to compare across runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+
+import numpy as np
+from timing import best_time  # bench/timing.py (the script's folder is on sys.path)
+
+from kinlib import transform
+from kinlib.kinematics import _fk, ik
+from kinlib.robots import puma560
+
+
+@contextlib.contextmanager
+def numpy_path():
+    """kinlib's compiled kernels switched off (as with KINLIB_NUMBA=0) inside the block."""
+    compiled, compiled_ik = _fk._compiled, ik._compiled_ik
+    _fk._compiled = ik._compiled_ik = lambda: None
+    try:
+        yield
+    finally:
+        _fk._compiled, ik._compiled_ik = compiled, compiled_ik
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=5)
+    args = ap.parse_args(argv)
+    if _fk._compiled() is None:
+        raise SystemExit("numba is not installed (or KINLIB_NUMBA=0): nothing to compare")
+    robot = puma560()
+    q = np.array([0.3, -0.6, 1.2, 0.2, 0.5, -0.4])
+    reachable, unreachable = robot.fk(q + 0.3), transform(p=[2.0, 0.0, 0.5])
+    with numpy_path():  # same answers on both paths (and warm both)
+        np.testing.assert_allclose(robot.fk(q), puma560().fk(q), atol=0)
+        assert robot.ik(reachable).success and not robot.ik(unreachable).success
+    assert robot.ik(reachable).success
+
+    calls = 2000
+    fk_c = best_time(lambda: [robot.fk(q) for _ in range(calls)], args.repeat) / calls
+    with numpy_path():
+        fk_n = best_time(lambda: [robot.fk(q) for _ in range(calls)], args.repeat) / calls
+    ik_c = best_time(lambda: robot.ik(unreachable), args.repeat)
+    iters = robot.ik(unreachable).iterations
+    with numpy_path():
+        ik_n = best_time(lambda: robot.ik(unreachable), max(1, args.repeat // 2))
+        reach_n = best_time(lambda: robot.ik(reachable), args.repeat)
+        reach_iters = robot.ik(reachable).iterations
+
+    print(f"PUMA 560, numpy path vs compiled, best of {args.repeat} (one process, interleaved)")
+    print(f"  single fk per call:        compiled {fk_c * 1e6:7.1f} us   numpy "
+          f"{fk_n * 1e6:7.1f} us   ratio {fk_n / fk_c:5.2f}  (goal <= 5)")
+    print(f"  IK per iteration:          compiled {ik_c / iters * 1e6:7.1f} us   numpy "
+          f"{ik_n / iters * 1e6:7.1f} us   ratio {ik_n / ik_c:5.2f}  (goal <= 10; "
+          f"{iters} iterations)")
+    print(f"  numpy IK, reachable:       {reach_n * 1e3:7.2f} ms ({reach_iters} iterations; "
+          "goal <= 20 ms)")
+    print(f"  numpy IK, unreachable:     {ik_n:7.3f} s  ({iters} iterations; goal <= 0.5 s)")
+
+
+if __name__ == "__main__":
+    main()
