@@ -25,6 +25,7 @@ import warnings
 import numpy as np
 from timing import best_time  # bench/timing.py (the script's folder is on sys.path)
 
+from kinlib.kinematics import _fk
 from kinlib.robots import puma560
 
 
@@ -69,17 +70,13 @@ def main(argv=None) -> int:
 
     robot.fk(Q)  # compile/load the kernel outside the timing
     t_kl = best_time(lambda: robot.fk(Q), args.repeat)
-    threads = 1
-    t_kl_1 = t_kl
+    cores = _fk.THREADS
+    threads = cores if Q.shape[0] >= _fk.PARALLEL_MIN else 1
+    _fk.THREADS = 1  # the same kernel on one thread
     try:
-        import numba
-
-        threads = numba.get_num_threads()
-        numba.set_num_threads(1)
         t_kl_1 = best_time(lambda: robot.fk(Q), args.repeat)
-        numba.set_num_threads(threads)
-    except ImportError:
-        pass
+    finally:
+        _fk.THREADS = cores
     t_pin = best_time(pin_loop, args.repeat)
     t_pinf = best_time(pin_frames_loop, args.repeat)
     t_rtb = best_time(lambda: dh.fkine(Q), max(1, args.repeat // 3))

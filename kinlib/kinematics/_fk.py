@@ -14,12 +14,15 @@ seed 000, with the stack replaced by each frame's parent index.
 from __future__ import annotations
 
 import functools
+import itertools
+import os
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 from .._accel import numba_disabled
 
-__all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian"]
+__all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian", "in_threads"]
 
 _KIND = {"fixed": 0, "revolute": 1, "continuous": 1, "prismatic": 2}
 
@@ -169,13 +172,37 @@ def _compiled():
 PARALLEL_MIN = 4096  # below this, starting the threads costs more than it saves
 
 
+#: threads a large batch is split into (one per core, at most 8)
+THREADS = max(1, min(os.cpu_count() or 1, 8))
+
+
+@functools.cache
+def _pool() -> ThreadPoolExecutor:
+    return ThreadPoolExecutor(max_workers=THREADS, thread_name_prefix="kinlib")
+
+
+def in_threads(kernel, n: int, args_of, min_batch: int = PARALLEL_MIN):
+    """``kernel(*args_of(0, n))``, computed as slices ``[a, b)`` of the batch in threads, one
+    per core, when ``n >= min_batch`` (the compiled kernels release the GIL); the slices'
+    results (an array, or a tuple of arrays) joined in order."""
+    k = min(THREADS, n // max(1, min_batch // 2)) if n >= min_batch else 1
+    if k <= 1:
+        return kernel(*args_of(0, n))
+    bounds = np.linspace(0, n, k + 1).astype(np.int64)
+    futures = [_pool().submit(kernel, *args_of(a, b)) for a, b in itertools.pairwise(bounds)]
+    parts = [f.result() for f in futures]
+    if isinstance(parts[0], tuple):
+        return tuple(np.concatenate(p) for p in zip(*parts, strict=True))
+    return np.concatenate(parts)
+
+
 def run_chain(chain: ChainTable, table: FKTable, q: np.ndarray, sel: np.ndarray, *,
               compiled: bool | None = None):
     """Pose (N, 4, 4) at the end of the joint path ``sel`` (a chain from the root)."""
     kernels = _compiled() if compiled is not False else None
     if kernels is not None:
-        fn = kernels.chain_parallel if q.shape[0] >= PARALLEL_MIN else kernels.chain
-        return fn(q, chain.ints, chain.floats, chain.D)
+        return in_threads(kernels.chain, q.shape[0],
+                          lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D))
     frames = run(table, q, sel, compiled=False)
     return frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
 
@@ -217,9 +244,8 @@ def run_chain_jacobian(chain: ChainTable, table: FKTable, joints, q: np.ndarray,
     """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the path ``sel``."""
     kernels = _compiled() if compiled is not False else None
     if kernels is not None:
-        fn = (kernels.chain_jacobian_parallel if q.shape[0] >= PARALLEL_MIN
-              else kernels.chain_jacobian)
-        return fn(q, chain.ints, chain.floats, chain.D, q.shape[1])
+        return in_threads(kernels.chain_jacobian, q.shape[0],
+                          lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D, q.shape[1]))
     frames = run(table, q, sel, compiled=False)
     T = frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
     return T, _jacobian_numpy(table, joints, frames, q.shape[1], sel)

@@ -1,17 +1,17 @@
-"""The numba kernels of :mod:`kinlib.kinematics._fk` (private; imported only when numba is wanted).
+"""The numba kernels of :mod:`kinlib.kinematics._fk` (private; imported only when numba is
+wanted).
 
 ``tree`` fills every frame of a tree, ``chain`` computes the last frame of a path (see
-``ChainTable``) and ``chain_jacobian`` that pose with its geometric Jacobian; the
-``*_parallel`` twins spread the loop over configurations across the CPU cores. All are
-cached on disk by numba.
+``ChainTable``) and ``chain_jacobian`` that pose with its geometric Jacobian. Each is
+compiled once, for one core, and cached on disk by numba; they release the GIL, so a large
+batch is spread over the cores by running slices of it in threads
+(:func:`kinlib.kinematics._fk.in_threads`), not by a second, parallel compilation.
 """
-
-import types
 
 import numba
 import numpy as np
 
-__all__ = ["chain", "chain_jacobian", "chain_jacobian_parallel", "chain_parallel", "tree"]
+__all__ = ["chain", "chain_jacobian", "tree"]
 
 
 @numba.njit(cache=True)
@@ -172,7 +172,7 @@ def chain(q, ints, floats, D):  # pragma: no cover - compiled
     N = q.shape[0]
     m = ints.shape[1]
     out = np.zeros((N, 4, 4))
-    for blk in numba.prange((N + BLOCK - 1) // BLOCK):
+    for blk in range((N + BLOCK - 1) // BLOCK):
         start = blk * BLOCK
         nb = min(BLOCK, N - start)
         T = np.empty((12, BLOCK))
@@ -227,7 +227,7 @@ def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
     out = np.zeros((N, 4, 4))
     J = np.zeros((N, 6, dof))
     chunks = min(N, CHUNKS)
-    for c in numba.prange(chunks):
+    for c in range(chunks):
         T = np.empty((3, 4))
         Z = np.empty((m, 3))
         O = np.empty((m, 3))
@@ -241,14 +241,5 @@ def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
     return out, J
 
 
-def _parallel(fn, name):
-    """``fn`` compiled with its prange loop spread over the cores, cached under ``name``."""
-    code = fn.__code__.replace(co_name=name, co_qualname=name)
-    return numba.njit(cache=True, parallel=True)(
-        types.FunctionType(code, fn.__globals__, name))
-
-
-chain_parallel = _parallel(chain, "chain_par")
-chain_jacobian_parallel = _parallel(chain_jacobian, "chain_jacobian_par")
-chain = numba.njit(cache=True)(chain)
-chain_jacobian = numba.njit(cache=True)(chain_jacobian)
+chain = numba.njit(cache=True, nogil=True)(chain)
+chain_jacobian = numba.njit(cache=True, nogil=True)(chain_jacobian)

@@ -1,17 +1,19 @@
 """The compiled Levenberg–Marquardt IK loop (private; see :mod:`kinlib.kinematics.ik` for the
 method).
 
-One target per iteration of a ``prange`` loop: every step (pose, Jacobian, log map,
+One target after another: every step (pose, Jacobian, log map,
 Cholesky solve, projection into the limits) runs without returning to Python, and the
-same pre-sampled starting configurations as the numpy reference are used.
+same pre-sampled starting configurations as the numpy reference are used. Compiled once,
+for one core; it releases the GIL, so many targets are solved in slices in threads
+(:func:`kinlib.kinematics._fk.in_threads`).
 """
 
 import numba
 import numpy as np
 
-from ._fk_numba import _columns, _parallel, _walk
+from ._fk_numba import _columns, _walk
 
-__all__ = ["ik_lm", "ik_lm_parallel"]
+__all__ = ["ik_lm"]
 
 LAMBDA0, LAMBDA_MIN, LAMBDA_MAX = 1e-3, 1e-12, 1e8
 
@@ -84,7 +86,7 @@ def ik_lm(targets, starts, lo, hi, wrap, ints, floats, D, position_only, tol_p, 
     pe_out = np.empty(n)
     re_out = np.empty(n)
     iters = np.zeros(n, dtype=np.int64)
-    for i in numba.prange(n):
+    for i in range(n):
         Q = np.empty((1, dof))
         q_acc = np.empty(dof)
         T = np.empty((3, 4))
@@ -158,5 +160,4 @@ def ik_lm(targets, starts, lo, hi, wrap, ints, floats, D, position_only, tol_p, 
     return q_out, success, pe_out, re_out, iters
 
 
-ik_lm_parallel = _parallel(ik_lm, "ik_lm_par")
-ik_lm = numba.njit(cache=True)(ik_lm)
+ik_lm = numba.njit(cache=True, nogil=True)(ik_lm)

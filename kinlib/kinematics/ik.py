@@ -33,6 +33,7 @@ from ..conventions import IK_POSITION_TOL, IK_ROTATION_TOL
 from ..errors import KinlibError
 from ..spatial.axis_angle import _log_so3_unchecked, log_so3
 from ..spatial.transforms import check_transform
+from ._fk import in_threads
 
 __all__ = ["IKResult", "solve_ik", "pose_error", "dls_step"]
 
@@ -194,10 +195,11 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
     kernels = _compiled_ik() if compiled is not False else None
     if kernels is not None:
         chain = robot.chain_table(link)
-        fn = kernels.ik_lm_parallel if n >= 8 else kernels.ik_lm
-        q, success, pe, re, iters = fn(T_t, starts, limits.lo, limits.hi, limits.wrap,
-                                       chain.ints, chain.floats, chain.D, position_only,
-                                       tol_p, tol_r, max_iterations)
+        q, success, pe, re, iters = in_threads(
+            kernels.ik_lm, n, lambda a, b: (T_t[a:b], starts[a:b], limits.lo, limits.hi,
+                                            limits.wrap, chain.ints, chain.floats, chain.D,
+                                            position_only, tol_p, tol_r, max_iterations),
+            min_batch=8)
     else:
         q, success, pe, re, iters = _solve_numpy(robot, link, T_t, starts, limits,
                                                  position_only, tol_p, tol_r, max_iterations)
