@@ -9,7 +9,10 @@ exercise's check must say "right" there: ``pytest_runtest_call`` reads the check
 not right; the notebook's last cell also fails unless every exercise of the notebook was
 checked, once each, in order.
 
-The course site the browser tests read (``tests/test_site.py``) is built in the background
+The course site the browser tests read (``tests/test_site.py``) is built on kinlib's numpy
+path (``KINLIB_NUMBA=0``, as for a student without numba): so every notebook of the course
+runs once without the compiled kernels (the student edition; nbval runs the instructor
+edition and JupyterLab the student edition with them). It is built in the background
 from ``pytest_collection_finish`` when a collected test asks for it: ``python -m kinlib.site``
 runs (one notebook at a time) while the other tests run, and the ``site`` fixture (here)
 waits for it. Under pytest-xdist (``make test`` runs two workers) the build is shared: the
@@ -61,7 +64,8 @@ with open(folder + "/pid", "w") as fh:
     fh.write(str(os.getpid()))
 with open(folder + "/build.log", "wb") as log:
     build = subprocess.Popen([sys.executable, "-m", "kinlib.site", "--out", folder + "/site",
-                              "--jobs", jobs], stdout=log, stderr=subprocess.STDOUT)
+                              "--jobs", jobs], stdout=log, stderr=subprocess.STDOUT,
+                             env=dict(os.environ, KINLIB_NUMBA="0"))
     while build.poll() is None:
         try:
             os.kill(owner, 0)
