@@ -49,14 +49,25 @@ def test_reachable_targets(model):
 
 @pytest.mark.parametrize("model", [puma560, panda], ids=lambda m: m.__name__)
 def test_numpy_reference_agrees_with_the_compiled_loop(model):
+    """One method written twice (the numpy reference, vectorised over the targets, and
+    the compiled loop, one target at a time): on every target the same success and the
+    same number of iterations, and the same answer to rounding. A tenth of the targets
+    are out of reach, so every restart runs to its end there."""
     robot = model()
-    T = reachable_targets(robot, 40, seed=12)
-    fast = robot.ik(T)
-    ref = ik.solve_ik(robot, T, compiled=False)
+    T = reachable_targets(robot, 100, seed=13)
+    T[::10, :3, 3] *= 3.0
+    fast = robot.ik(T, restarts=10)
+    ref = ik.solve_ik(robot, T, compiled=False, restarts=10)
     check_solutions(robot, T, ref)
-    assert np.mean(ref.success) >= 0.95
-    # same starts, same method: the same targets succeed (rounding may rarely differ)
-    assert np.mean(fast.success == ref.success) >= 0.95
+    assert 0.8 <= np.mean(ref.success) < 0.95  # the far ones fail
+    np.testing.assert_array_equal(fast.success, ref.success)
+    np.testing.assert_array_equal(fast.iterations, ref.iterations)
+    ok = ref.success
+    np.testing.assert_allclose(fast.q[ok], ref.q[ok], rtol=0, atol=1e-9)
+    # not reached: after up to 330 steps the rounding of the two (sin/cos, summation order)
+    # has drifted apart, and the closest poses agree to a tenth of a micrometre
+    np.testing.assert_allclose(fast.position_error[~ok], ref.position_error[~ok], rtol=1e-6,
+                               atol=1e-7)
 
 
 def test_unreachable_target_is_never_success():
