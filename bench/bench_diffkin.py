@@ -29,6 +29,7 @@ import warnings
 import numpy as np
 from timing import best_time  # bench/timing.py (the script's folder is on sys.path)
 
+from kinlib.kinematics import _fk
 from kinlib.robots import panda, puma560
 
 
@@ -68,6 +69,13 @@ def ik_vs_rtb(robot, m, tol, rtb) -> None:
     t0 = time.perf_counter()
     sol = robot.ik(T, tol_position=tol, tol_rotation=tol)
     t_ik = time.perf_counter() - t0
+    cores, _fk.THREADS = _fk.THREADS, 1  # the same, on one core
+    try:
+        t0 = time.perf_counter()
+        robot.ik(T, tol_position=tol, tol_rotation=tol)
+        t_one = time.perf_counter() - t0
+    finally:
+        _fk.THREADS = cores
     same = float(np.sqrt(2 * tol))  # RTB stops at ½|e|² < tol: |e| below this
     t0 = time.perf_counter()
     sol_same = robot.ik(T, tol_position=same, tol_rotation=same)
@@ -85,6 +93,8 @@ def ik_vs_rtb(robot, m, tol, rtb) -> None:
     med = float(np.median(times))
     print(f"{robot.name + ': batched ik per target vs RTB ETS.ik_LM median':48s} "
           f"{t_ik / m * 1e6:10.1f} {med * 1e6:10.1f} {(t_ik / m) / med:7.3f}")
+    print(f"{'  the same, kinlib on one core':48s} "
+          f"{t_one / m * 1e6:10.1f} {med * 1e6:10.1f} {(t_one / m) / med:7.3f}")
     print(f"{'  kinlib at |e| < ' + f'{same:.2g}' + ' (RTB stops below it)':48s} "
           f"{t_same / m * 1e6:10.1f} {med * 1e6:10.1f} {(t_same / m) / med:7.3f}")
     print(f"  success (errors < 1e-6 m and 1e-6 rad, within limits): kinlib "
