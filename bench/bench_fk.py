@@ -107,7 +107,39 @@ def main(argv=None) -> int:
     ]
     for name, a, b in rows:
         print(f"{name:52s} {a * 1e6:10.3f} {b * 1e6:10.3f} {a / b:7.3f}")
+    sincos_pays(robot, Q, args.repeat)
     return 0
+
+
+def sincos_pays(robot, Q, repeat) -> None:
+    """The chain kernel with kinlib's fdlibm sincos (one argument reduction for both)
+    against the same kernel calling numba's sin and cos, one thread: is the port worth
+    keeping? (the answers agree to a few ulps)"""
+    import types
+
+    try:
+        import numba
+    except ImportError:
+        return
+    K = _fk._compiled()
+    if K is None:
+        return
+
+    @numba.njit
+    def libm_sincos(x):
+        return np.sin(x), np.cos(x)
+
+    f = K.chain.py_func
+    libm = numba.njit(nogil=True)(types.FunctionType(
+        f.__code__, {**f.__globals__, "sincos": libm_sincos}, "chain_libm"))
+    ch = robot.chain_table()
+    ours, theirs = K.chain(Q, ch.ints, ch.floats, ch.D), libm(Q, ch.ints, ch.floats, ch.D)
+    assert np.abs(ours - theirs).max() < 1e-14
+    t_ours = best_time(lambda: K.chain(Q, ch.ints, ch.floats, ch.D), repeat)
+    t_libm = best_time(lambda: libm(Q, ch.ints, ch.floats, ch.D), repeat)
+    n = len(Q)
+    print(f"{'chain kernel: fdlibm sincos vs numba sin + cos':52s} {t_ours / n * 1e6:10.3f} "
+          f"{t_libm / n * 1e6:10.3f} {t_ours / t_libm:7.3f}")
 
 
 if __name__ == "__main__":

@@ -201,6 +201,8 @@ def run_chain(chain: ChainTable, table: FKTable, q: np.ndarray, sel: np.ndarray,
     """Pose (N, 4, 4) at the end of the joint path ``sel`` (a chain from the root)."""
     kernels = _compiled() if compiled is not False else None
     if kernels is not None:
+        if q.shape[0] < PARALLEL_MIN:  # (the common case: no slicing, no threads)
+            return kernels.chain(q, chain.ints, chain.floats, chain.D)
         return in_threads(kernels.chain, q.shape[0],
                           lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D))
     frames = run(table, q, sel, compiled=False)
@@ -244,6 +246,8 @@ def run_chain_jacobian(chain: ChainTable, table: FKTable, joints, q: np.ndarray,
     """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the path ``sel``."""
     kernels = _compiled() if compiled is not False else None
     if kernels is not None:
+        if q.shape[0] < PARALLEL_MIN:
+            return kernels.chain_jacobian(q, chain.ints, chain.floats, chain.D, q.shape[1])
         return in_threads(kernels.chain_jacobian, q.shape[0],
                           lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D, q.shape[1]))
     frames = run(table, q, sel, compiled=False)

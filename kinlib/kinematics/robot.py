@@ -83,6 +83,7 @@ class Robot:
         self._parent_index = {jt.child: j for j, jt in enumerate(self._order)}
         self._all = np.arange(len(self._order), dtype=np.int64)
         self._chains = {}  # link -> _fk.ChainTable, filled on first fk(link=...)
+        self._paths = {}  # link -> joint indices root → link, filled on first use
         parents = {jt.parent for jt in joints}
         leaves = [lk.name for lk in links if lk.name not in parents]
         self.tip = leaves[0] if len(leaves) == 1 else None
@@ -173,13 +174,19 @@ class Robot:
         return a
 
     def _path(self, link) -> np.ndarray:
-        """Indices (traversal order) of the joints from the root to ``link``."""
-        path = []
-        while link in self._parent_index:
-            j = self._parent_index[link]
-            path.append(j)
-            link = self._order[j].parent
-        return np.array(path[::-1], dtype=np.int64)
+        """Indices (traversal order) of the joints from the root to ``link`` (built once per
+        link; read-only)."""
+        path = self._paths.get(link)
+        if path is None:
+            path, at = [], link
+            while at in self._parent_index:
+                j = self._parent_index[at]
+                path.append(j)
+                at = self._order[j].parent
+            path = np.array(path[::-1], dtype=np.int64)
+            path.setflags(write=False)
+            self._paths[link] = path
+        return path
 
     def chain_table(self, link=None) -> _fk.ChainTable:
         """The path root → ``link`` (default: the tip) as the arrays the compiled kernels
