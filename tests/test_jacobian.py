@@ -145,7 +145,7 @@ def test_compiled_and_numpy_paths_and_batches_agree(model):
     Q = sample(robot, _fk.PARALLEL_MIN + 5, 6)  # the parallel kernel too
     T, J = robot.fk_and_jacobian(Q, link)
     path = robot._path(link)
-    T0, J0 = _fk.run_chain_jacobian(robot.chain_table(link), robot._table, robot._order, Q, path,
+    T0, J0 = _fk.run_chain_jacobian(robot.chain_table(link), robot._table, Q, path,
                                     compiled=False)
     np.testing.assert_allclose(J, J0, atol=1e-12)
     np.testing.assert_allclose(T, T0, atol=1e-12)

@@ -21,6 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .._accel import numba_disabled
+from ..spatial.transforms import transform_inverse
 
 __all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian", "in_threads"]
 
@@ -43,9 +44,7 @@ class FKTable:
         self.axis = np.zeros((n, 3))
         for j, jt in enumerate(joints_in_order):
             self.axis[j] = jt.axis
-            self.post_inv[j, :3, :3] = jt.post[:3, :3].T
-            self.post_inv[j, :3, 3] = -jt.post[:3, :3].T @ jt.post[:3, 3]
-            self.post_inv[j, 3, 3] = 1.0
+            self.post_inv[j] = transform_inverse(jt.post)
             self.parent[j] = frame_of_link[jt.parent]
             self.kind[j] = _KIND[jt.type]
             if jt.type != "fixed":
@@ -217,7 +216,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
 
 
-def _jacobian_numpy(table: FKTable, joints, frames, q_cols: int, sel: np.ndarray):
+def _jacobian_numpy(table: FKTable, frames, q_cols: int, sel: np.ndarray):
     """Reference Jacobian from the tree's frames (N, 1 + n, 4, 4) of the path ``sel``: for
     every moving joint on it at once, its world axis z and origin o from its frame
     ``origin · motion(q)`` (the child's frame times the inverse post transform); column
@@ -241,7 +240,7 @@ def _jacobian_numpy(table: FKTable, joints, frames, q_cols: int, sel: np.ndarray
     return J
 
 
-def run_chain_jacobian(chain: ChainTable, table: FKTable, joints, q: np.ndarray,
+def run_chain_jacobian(chain: ChainTable, table: FKTable, q: np.ndarray,
                        sel: np.ndarray, *, compiled: bool | None = None):
     """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the path ``sel``."""
     kernels = _compiled() if compiled is not False else None
@@ -252,7 +251,7 @@ def run_chain_jacobian(chain: ChainTable, table: FKTable, joints, q: np.ndarray,
                           lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D, q.shape[1]))
     frames = run(table, q, sel, compiled=False)
     T = frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
-    return T, _jacobian_numpy(table, joints, frames, q.shape[1], sel)
+    return T, _jacobian_numpy(table, frames, q.shape[1], sel)
 
 
 def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None = None):

@@ -234,7 +234,7 @@ class Robot:
         link = self.resolve_link(link)
         a = self.check_q(q)
         batch = a.shape[:-1]
-        T, J = _fk.run_chain_jacobian(self.chain_table(link), self._table, self._order,
+        T, J = _fk.run_chain_jacobian(self.chain_table(link), self._table,
                                       a.reshape(int(np.prod(batch)), self.dof),
                                       self._path(link))
         return T.reshape(batch + (4, 4)), J.reshape(batch + (6, self.dof))

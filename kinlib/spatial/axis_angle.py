@@ -16,7 +16,12 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, as_unit_vectors, broadcast, is_symbolic, unit_rows
-from .quaternions import _quat_from_matrix_numpy, axis_angle_from_quat, quat_from_matrix
+from .quaternions import (
+    _half_turn_parts,
+    _quat_from_matrix_numpy,
+    axis_angle_from_quat,
+    quat_from_matrix,
+)
 
 __all__ = [
     "matrix_from_axis_angle",
@@ -143,10 +148,6 @@ def _log_so3_unchecked(m: np.ndarray) -> np.ndarray:
     step (the IK's rotation error). The same route: Shepperd's quaternion, then
     ``θ = 2 atan2(|v|, w)``."""
     q = _quat_from_matrix_numpy(m)
-    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
-    q = np.where(q[..., :1] < 0, -q, q)
-    v = q[..., 1:]
-    s = np.hypot(np.hypot(v[..., 0], v[..., 1]), v[..., 2])
-    angle = 2.0 * np.arctan2(s, q[..., 0])
+    v, s, angle = _half_turn_parts(q / np.linalg.norm(q, axis=-1, keepdims=True))
     scale = np.where(s > 1e-300, angle / np.where(s > 1e-300, s, 1.0), 0.0)
     return v * scale[..., None]

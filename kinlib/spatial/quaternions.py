@@ -164,15 +164,20 @@ def axis_angle_from_quat(q):
     >>> axis.round(12) + 0.0, round(angle, 12)
     (array([0., 1., 0.]), 1.570796326795)
     """
-    a = quat_normalize(q)
-    a = np.where(a[..., :1] < 0, -a, a)  # same rotation, angle in [0, π]
-    v = a[..., 1:]
-    # hypot, not sqrt(v·v): the squares underflow for angles below ~1e-154
-    s = np.hypot(np.hypot(v[..., 0], v[..., 1]), v[..., 2])
-    angle = 2.0 * np.arctan2(s, a[..., 0])
+    v, s, angle = _half_turn_parts(quat_normalize(q))
     tiny = s <= 1e-300
     axis = np.where(tiny[..., None], [1.0, 0.0, 0.0], v / np.where(tiny, 1.0, s)[..., None])
     return axis, py_scalar(angle)
+
+
+def _half_turn_parts(a):
+    """For unit quaternions ``a``: ``(v, |v|, angle)`` of the one with ``w >= 0`` (the same
+    rotation, angle in [0, π]): its vector part, that part's norm and ``2 atan2(|v|, w)``."""
+    a = np.where(a[..., :1] < 0, -a, a)
+    v = a[..., 1:]
+    # hypot, not sqrt(v·v): the squares underflow for angles below ~1e-154
+    s = np.hypot(np.hypot(v[..., 0], v[..., 1]), v[..., 2])
+    return v, s, 2.0 * np.arctan2(s, a[..., 0])
 
 
 def matrix_from_quat(q):
