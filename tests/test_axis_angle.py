@@ -348,3 +348,25 @@ def test_the_unchecked_log_of_the_ik_loop_is_log_so3():
     np.testing.assert_allclose(fast[~near_pi], reference[~near_pi], rtol=0, atol=2e-15)
     np.testing.assert_allclose(exp_so3(fast), R, rtol=0, atol=1e-14)
     np.testing.assert_allclose(np.linalg.norm(fast, axis=1), angles, rtol=0, atol=1e-8)
+
+
+def test_unchecked_log_agrees_with_log_so3_at_every_angle():
+    """The IK loop's log map (no input checks; the antisymmetric part up to 3 rad, the
+    quaternion route beyond) against the rotation vectors the rotations were made from,
+    across its switch at 3 rad and up to π; scipy's ``as_rotvec`` is the independent
+    reference."""
+    from kinlib.spatial.axis_angle import _log_so3_unchecked
+
+    rng = np.random.default_rng(5)
+    axes = rng.normal(size=(13, 3))
+    axes /= np.linalg.norm(axes, axis=1, keepdims=True)
+    angles = np.array([0.0, 1e-12, 1e-6, 0.3, 1.5, 2.9, 3.0 - 1e-9, 3.0, 3.0 + 1e-9, 3.1,
+                       np.pi - 1e-6, np.pi - 1e-10, 2.0])
+    w = axes * angles[:, None]
+    R = Rotation.from_rotvec(w).as_matrix()
+    got = _log_so3_unchecked(R)
+    np.testing.assert_allclose(got, w, atol=1e-9)  # (near π: the angle of R to ~1e-10)
+    np.testing.assert_allclose(got, Rotation.from_matrix(R).as_rotvec(), atol=1e-9)
+    np.testing.assert_allclose(got, kl.log_so3(R), atol=1e-12)
+    small = angles < 3.0
+    np.testing.assert_allclose(got[small], w[small], rtol=1e-12, atol=1e-15)

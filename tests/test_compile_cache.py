@@ -32,7 +32,11 @@ def test_every_kernel_is_compiled_once_for_every_batch_size():
             assert T.shape == (n, 4, 4) and J.shape == (n, 6, robot.dof)
         targets = robot.fk(rng.uniform(-1, 1, (9, robot.dof)))  # 9: in threads
         assert robot.ik(targets).success.mean() > 0.5 and robot.ik(targets[1]).success
-    for kernel in (kernels.chain, kernels.chain_jacobian, ik._compiled_ik().ik_lm):
+        frozen = np.broadcast_to(q[0], (3, robot.dof))  # read-only: numba types it apart
+        robot.fk(frozen), robot.jacobian(frozen), robot.link_poses(frozen)
+        assert robot.ik(np.broadcast_to(targets[1], (2, 4, 4))).success.all()
+    for kernel in (kernels.chain, kernels.chain_jacobian, kernels.tree,
+                   ik._compiled_ik().ik_lm):
         assert len(kernel.signatures) == 1, (kernel, kernel.signatures)
     assert not [n for n in dir(kernels) if n.endswith("parallel")]
 

@@ -145,10 +145,14 @@ def test_compiled_and_numpy_paths_and_batches_agree(model):
     Q = sample(robot, _fk.PARALLEL_MIN + 5, 6)  # the parallel kernel too
     T, J = robot.fk_and_jacobian(Q, link)
     path = robot._path(link)
-    T0, J0 = _fk.run_chain_jacobian(robot.chain_table(link), robot._table, Q, path,
-                                    compiled=False)
+    T0, J0 = _fk.run_chain_jacobian(robot.chain_table(link), Q, compiled=False)
     np.testing.assert_allclose(J, J0, atol=1e-12)
     np.testing.assert_allclose(T, T0, atol=1e-12)
+    # the chain's numpy path against the tree's (joint by joint, no constants folded)
+    tree = _fk.run(robot._table, Q, path, compiled=False)
+    np.testing.assert_allclose(T0, tree[:, path[-1] + 1], atol=1e-12)
+    np.testing.assert_allclose(_fk.run_chain(robot.chain_table(link), Q, compiled=False), T0,
+                               atol=0)
     np.testing.assert_allclose(T, robot.fk(Q, link=link), atol=1e-13)
     for i in (0, 7):
         np.testing.assert_allclose(robot.jacobian(Q[i], link=link), J[i], atol=1e-13)

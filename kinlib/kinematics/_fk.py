@@ -21,7 +21,6 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .._accel import numba_disabled
-from ..spatial.transforms import transform_inverse
 
 __all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian", "in_threads"]
 
@@ -39,12 +38,7 @@ class FKTable:
         self.mult = np.ones(n)
         self.offset = np.zeros(n)
         self.M = np.zeros((n, 3, 4, 4))
-        #: each joint's post transform inverted (closed form): the Jacobian's joint frames
-        self.post_inv = np.zeros((n, 4, 4))
-        self.axis = np.zeros((n, 3))
         for j, jt in enumerate(joints_in_order):
-            self.axis[j] = jt.axis
-            self.post_inv[j] = transform_inverse(jt.post)
             self.parent[j] = frame_of_link[jt.parent]
             self.kind[j] = _KIND[jt.type]
             if jt.type != "fixed":
@@ -69,7 +63,7 @@ class FKTable:
         self.ints = np.ascontiguousarray(np.stack([self.parent, self.kind, self.qidx]))
         self.floats = np.ascontiguousarray(np.stack([self.mult, self.offset]))
         for a in (self.parent, self.kind, self.qidx, self.mult, self.offset, self.M, self.ints,
-                  self.floats, self.post_inv, self.axis):
+                  self.floats):
             a.setflags(write=False)
 
     def coefficients(self, q: np.ndarray, sel: np.ndarray):
@@ -126,6 +120,16 @@ class ChainTable:
               for d in self.D[1:]]
         self.ints = np.array([kinds, qidx, rx], dtype=np.int64).reshape(3, -1)
         self.floats = np.array([mult, offset], dtype=float).reshape(2, -1)
+        # for the numpy path (_chain_numpy): the constants as 4×4, which joints turn
+        self.D4 = np.zeros((len(D), 4, 4))
+        self.D4[:, :3], self.D4[:, 3, 3] = self.D, 1.0
+        self.revolute = np.flatnonzero(self.ints[0] == 1)
+        self.prismatic = np.flatnonzero(self.ints[0] == 2)
+        self.all_revolute = len(self.revolute) == len(kinds)
+        self.shared = len(set(qidx)) < len(qidx)  # mimic joints: columns of J shared
+        #: q is the joint angles as they are: joint k driven by q[k], times 1, plus 0
+        self.plain = (list(qidx) == list(range(len(qidx))) and not any(o != 0 for o in offset)
+                      and not any(w != 1 for w in mult))
 
 
 def _numpy(table: FKTable, q: np.ndarray, sel: np.ndarray, out: np.ndarray) -> None:
@@ -195,19 +199,6 @@ def in_threads(kernel, n: int, args_of, min_batch: int = PARALLEL_MIN):
     return np.concatenate(parts)
 
 
-def run_chain(chain: ChainTable, table: FKTable, q: np.ndarray, sel: np.ndarray, *,
-              compiled: bool | None = None):
-    """Pose (N, 4, 4) at the end of the joint path ``sel`` (a chain from the root)."""
-    kernels = _compiled() if compiled is not False else None
-    if kernels is not None:
-        if q.shape[0] < PARALLEL_MIN:  # (the common case: no slicing, no threads)
-            return kernels.chain(q, chain.ints, chain.floats, chain.D)
-        return in_threads(kernels.chain, q.shape[0],
-                          lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D))
-    frames = run(table, q, sel, compiled=False)
-    return frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
-
-
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """``a × b`` over the last axis (np.cross's axis handling costs more than the products
     for a few vectors)."""
@@ -216,42 +207,95 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
 
 
-def _jacobian_numpy(table: FKTable, frames, q_cols: int, sel: np.ndarray):
-    """Reference Jacobian from the tree's frames (N, 1 + n, 4, 4) of the path ``sel``: for
-    every moving joint on it at once, its world axis z and origin o from its frame
-    ``origin · motion(q)`` (the child's frame times the inverse post transform); column
-    ``[z × (p − o); z]`` (revolute) or ``[z; 0]`` (prismatic), times the mimic multiplier,
-    added into the column of the joint that drives it."""
-    N = frames.shape[0]
-    J = np.zeros((N, 6, q_cols))
-    if len(sel) == 0:
-        return J
-    moving = sel[table.kind[sel] != 0]
-    if len(moving) == 0:
-        return J
-    p_end = frames[:, sel[-1] + 1, :3, 3]
-    G = frames[:, moving + 1] @ table.post_inv[moving]            # (N, k, 4, 4)
-    z = np.einsum("nkij,kj->nki", G[..., :3, :3], table.axis[moving])
-    revolute = (table.kind[moving] == 1)[:, None]
-    linear = np.where(revolute, _cross(z, p_end[:, None, :] - G[..., :3, 3]), z)
-    angular = np.where(revolute, z, 0.0)
-    columns = np.concatenate([linear, angular], axis=-1) * table.mult[moving][:, None]
-    np.add.at(np.moveaxis(J, 2, 0), table.qidx[moving], np.moveaxis(columns, 1, 0))
-    return J
+def _chain_numpy(chain: ChainTable, q: np.ndarray, dof: int | None = None):
+    """The numpy path of a chain: the end pose (N, 4, 4), and with ``dof`` also the
+    geometric Jacobian (N, 6, dof).
+
+    Each moving joint's ``Z(q_k) D_k`` is formed for every configuration at once (Rz(q) on
+    the left mixes two rows of ``D_k``; Tz(q) adds q to the translation's z), then the
+    chain is one batched 4×4 product per joint: ``F_k = F_{k−1} Z(q_k) D_k`` from
+    ``F_0 = D_0``. Joint k turns about the z axis of ``F_{k−1}`` through its origin, so its
+    Jacobian column is ``[z × (p − o); z]`` (revolute) or ``[z; 0]`` (prismatic), times the
+    joint's multiplier, added into the column of the q that drives it."""
+    N, qidx = q.shape[0], chain.ints[1]
+    plain = chain.plain and q.shape[1] == len(qidx)
+    qe = q if plain else q[:, qidx] * chain.floats[0] + chain.floats[1]  # (N, m)
+    D = chain.D4[1:]
+    rev, pri = chain.revolute, chain.prismatic
+    if chain.all_revolute:  # (most robots: plain slices, no fancy indexing)
+        ZD = np.empty((N,) + D.shape)
+        ZD[:, :, 2:] = D[:, 2:]
+        s, c = np.sin(qe)[..., None], np.cos(qe)[..., None]
+        ZD[:, :, 0] = c * D[:, 0] - s * D[:, 1]
+        ZD[:, :, 1] = s * D[:, 0] + c * D[:, 1]
+    else:
+        ZD = np.repeat(D[None], N, axis=0)
+        if len(rev):
+            s, c = np.sin(qe[:, rev])[..., None], np.cos(qe[:, rev])[..., None]
+            r0, r1 = D[rev, 0], D[rev, 1]
+            ZD[:, rev, 0], ZD[:, rev, 1] = c * r0 - s * r1, s * r0 + c * r1
+        if len(pri):
+            ZD[:, pri, 2, 3] += qe[:, pri]
+    F = np.repeat(chain.D4[:1], N, axis=0)
+    if dof is None:
+        for k in range(D.shape[0]):
+            F = F @ ZD[:, k]
+        return F
+    frames = np.empty((N, D.shape[0], 3, 4))  # each joint's frame F_{k−1}: its axis z, origin o
+    for k in range(D.shape[0]):
+        frames[:, k] = F[:, :3]
+        F = F @ ZD[:, k]
+    J = np.zeros((N, 6, dof))
+    if D.shape[0] == 0:
+        return F, J
+    z, o = frames[..., 2], frames[..., 3]
+    columns = np.empty((N, D.shape[0], 6))
+    if chain.all_revolute:
+        columns[..., :3] = _cross(z, F[:, None, :3, 3] - o)
+        columns[..., 3:] = z
+    else:
+        columns[..., :3] = z
+        columns[..., 3:] = 0.0
+        if len(rev):
+            columns[:, rev, :3] = _cross(z[:, rev], F[:, None, :3, 3] - o[:, rev])
+            columns[:, rev, 3:] = z[:, rev]
+    if not plain:
+        columns *= chain.floats[0][:, None]
+    if chain.shared:
+        np.add.at(np.moveaxis(J, 2, 0), qidx, np.moveaxis(columns, 1, 0))
+    else:
+        J[:, :, qidx] = np.swapaxes(columns, 1, 2)
+    return F, J
 
 
-def run_chain_jacobian(chain: ChainTable, table: FKTable, q: np.ndarray,
-                       sel: np.ndarray, *, compiled: bool | None = None):
-    """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the path ``sel``."""
+def writable(a: np.ndarray) -> np.ndarray:
+    """``a``, or a copy of it if it is read-only (``np.broadcast_to``, a frozen array): numba
+    types a read-only array apart, and would compile every kernel a second time for it."""
+    return a if a.flags.writeable else a.copy()
+
+
+def run_chain(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None):
+    """Pose (N, 4, 4) at the end of the chain."""
     kernels = _compiled() if compiled is not False else None
     if kernels is not None:
+        q = writable(q)
+        if q.shape[0] < PARALLEL_MIN:  # (the common case: no slicing, no threads)
+            return kernels.chain(q, chain.ints, chain.floats, chain.D)
+        return in_threads(kernels.chain, q.shape[0],
+                          lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D))
+    return _chain_numpy(chain, q)
+
+
+def run_chain_jacobian(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None):
+    """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the chain."""
+    kernels = _compiled() if compiled is not False else None
+    if kernels is not None:
+        q = writable(q)
         if q.shape[0] < PARALLEL_MIN:
             return kernels.chain_jacobian(q, chain.ints, chain.floats, chain.D, q.shape[1])
         return in_threads(kernels.chain_jacobian, q.shape[0],
                           lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D, q.shape[1]))
-    frames = run(table, q, sel, compiled=False)
-    T = frames[:, 0] if len(sel) == 0 else frames[:, sel[-1] + 1]
-    return T, _jacobian_numpy(table, frames, q.shape[1], sel)
+    return _chain_numpy(chain, q, q.shape[1])
 
 
 def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None = None):
@@ -263,7 +307,7 @@ def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None
     """
     kernels = _compiled() if compiled is not False else None
     if kernels is not None:
-        return kernels.tree(q, sel, table.ints, table.floats, table.M)
+        return kernels.tree(writable(q), sel, table.ints, table.floats, table.M)
     out = np.empty((q.shape[0], table.n + 1, 4, 4))
     out[:, 0] = np.eye(4)
     _numpy(table, q, sel, out)

@@ -33,6 +33,7 @@ from ..conventions import IK_POSITION_TOL, IK_ROTATION_TOL
 from ..errors import KinlibError
 from ..spatial.axis_angle import _log_so3_unchecked, log_so3
 from ..spatial.transforms import check_transform
+from . import _fk
 from ._fk import in_threads
 
 __all__ = ["IKResult", "solve_ik", "pose_error", "dls_step"]
@@ -183,7 +184,7 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
     """See :meth:`kinlib.Robot.ik`. ``compiled=False`` forces the numpy reference."""
     T_t = _targets(T_target, position_only)
     batch = T_t.shape[:-2]
-    T_t = np.ascontiguousarray(T_t.reshape(-1, 4, 4))
+    T_t = _fk.writable(np.ascontiguousarray(T_t.reshape(-1, 4, 4)))
     n = T_t.shape[0]
     tol_p, tol_r = as_tol(tol_position, "tol_position"), as_tol(tol_rotation, "tol_rotation")
     max_iterations = _check_count("max_iterations", max_iterations, 1)
@@ -223,53 +224,133 @@ def _compiled_ik():
     return _load_kernels("_ik_numba")
 
 
+#: the numpy path's attempts side by side (see _solve_numpy): each failed attempt of a
+#: target multiplies how many of its attempts may run at once by GROWTH, up to WINDOW_MAX
+#: (bench/bench_numpy.py: growth 8 and 64 at once take an unreachable PUMA 560 target in
+#: about a third of the time of growth 2 and 32, a reachable one in the same)
+WINDOW_MAX = 64
+GROWTH = 8
+
+
+class _Lanes:
+    """The attempts running side by side in the numpy path: one row per (target, attempt),
+    each field an array over the rows."""
+
+    FIELDS = ("t", "a", "q", "lam", "steps", "cost_acc", "q_acc", "e_acc", "J_acc",
+              "bcost", "bq", "bp", "br")
+
+    def __init__(self, **fields):
+        for name in self.FIELDS:
+            setattr(self, name, fields[name])
+
+    def keep(self, mask):
+        for name in self.FIELDS:
+            setattr(self, name, getattr(self, name)[mask])
+
+    def extend(self, other):
+        for name in self.FIELDS:
+            setattr(self, name, np.concatenate([getattr(self, name), getattr(other, name)]))
+
+
+def _launch(targets, attempts, starts, rows):
+    """Fresh lanes: attempt ``attempts[k]`` of target ``targets[k]`` from its start."""
+    m, dof = len(targets), starts.shape[2]
+    q = starts[targets, attempts]
+    return _Lanes(t=targets, a=attempts, q=q, lam=np.full(m, _LAMBDA0),
+                  steps=np.zeros(m, dtype=np.int64), cost_acc=np.full(m, np.inf),
+                  q_acc=q.copy(), e_acc=np.zeros((m, rows)), J_acc=np.zeros((m, 6, dof)),
+                  bcost=np.full(m, np.inf), bq=q.copy(), bp=np.full(m, np.inf),
+                  br=np.full(m, np.inf))
+
+
 def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, max_iter):
-    """The reference: the same method, vectorised across the targets still running."""
+    """The reference: the same method as the compiled loop, vectorised.
+
+    A target's attempts do not depend on each other (each starts afresh from its own
+    start), only the answer does: the first attempt, in order, that succeeds; else the
+    closest pose of all, the first of equals. So the attempts of every target run side by
+    side as lanes of one vectorised loop: first one per target, then, each time one fails,
+    :data:`GROWTH` times as many (at most :data:`WINDOW_MAX`). A target is decided once an attempt
+    succeeded and every earlier one has ended, or when all have failed; its lanes still
+    running are then dropped, and the iterations reported are those of the attempts up to
+    the deciding one, as if run one after another: the same answers and counts as the
+    compiled loop, without paying numpy's cost per call once per restart of an unreachable
+    target."""
     n, attempts, dof = starts.shape
-    rows = slice(0, 3) if position_only else slice(None)
+    rows = 3 if position_only else 6
+    sel = slice(0, rows)
     eye = np.eye(dof)
-    q = starts[:, 0].copy()
-    lam = np.full(n, _LAMBDA0)
-    steps = np.zeros(n, dtype=np.int64)          # in the current attempt
-    total = np.zeros(n, dtype=np.int64)
-    attempt = np.zeros(n, dtype=np.int64)
-    done = np.zeros(n, dtype=bool)
-    success = np.zeros(n, dtype=bool)
-    q_acc, cost_acc = q.copy(), np.full(n, np.inf)
-    e_acc = np.zeros((n, 3 if position_only else 6))
-    J_acc = np.zeros((n, 6, dof))
-    best_q, best_cost = q.copy(), np.full(n, np.inf)
-    best_p, best_r = np.full(n, np.inf), np.full(n, np.inf)
-    while not done.all():
-        idx = np.flatnonzero(~done)
-        T, J = robot.fk_and_jacobian(q[idx], link)
-        e, ep, er = _errors(T_t[idx], T, position_only)
+    chain = robot.chain_table(link)
+    # per target and attempt, once the attempt has ended: its steps, success, closest pose
+    ended = np.zeros((n, attempts), dtype=bool)
+    ok_at = np.zeros((n, attempts), dtype=bool)
+    it_at = np.zeros((n, attempts), dtype=np.int64)
+    cost_at = np.full((n, attempts), np.inf)
+    q_at = np.repeat(starts[:, :1], attempts, axis=1)
+    p_at, r_at = np.full((n, attempts), np.inf), np.full((n, attempts), np.inf)
+    window = np.ones(n, dtype=np.int64)
+    running = np.ones(n, dtype=np.int64)
+    launched = np.ones(n, dtype=np.int64)       # attempts started so far: 0 .. launched − 1
+    limit = np.full(n, attempts)                # attempts that can still matter
+    decided = np.zeros(n, dtype=bool)
+    lanes = _launch(np.arange(n), np.zeros(n, dtype=np.int64), starts, rows)
+    while len(lanes.t):
+        T, J = _fk.run_chain_jacobian(chain, lanes.q, compiled=False)
+        e, ep, er = _errors(T_t[lanes.t], T, position_only)
         cost = ep * ep + (0.0 if position_only else er * er)
-        total[idx] += 1
-        steps[idx] += 1
+        lanes.steps += 1
         ok = (ep < tol_p) & (position_only | (er < tol_r))
-        better = (cost < best_cost[idx]) | ok
-        b = idx[better]
-        best_q[b], best_cost[b], best_p[b], best_r[b] = q[b], cost[better], ep[better], \
-            er[better]
-        success[idx[ok]] = done[idx[ok]] = True
-        improved = cost < cost_acc[idx]
-        acc = idx[improved]
-        q_acc[acc], cost_acc[acc], e_acc[acc], J_acc[acc] = q[acc], cost[improved], \
-            e[improved], J[improved]
-        lam[acc] = np.maximum(lam[acc] / 3.0, _LAMBDA_MIN)
-        lam[idx[~improved]] *= 4.0
-        # an attempt ends after max_iter steps or when λ has grown useless: next start
-        ended = idx[((steps[idx] >= max_iter) | (lam[idx] > _LAMBDA_MAX)) & ~ok]
-        attempt[ended] += 1
-        done[ended[attempt[ended] >= attempts]] = True
-        fresh = ended[attempt[ended] < attempts]
-        steps[fresh], lam[fresh], cost_acc[fresh] = 0, _LAMBDA0, np.inf
-        q[fresh] = starts[fresh, attempt[fresh]]
-        live = idx[~done[idx] & ~np.isin(idx, fresh)]
-        if live.size:  # the damped step from the accepted point
-            Ja = J_acc[live][:, rows]
-            A = np.swapaxes(Ja, 1, 2) @ Ja + lam[live, None, None] * eye
-            g = np.einsum("nij,ni->nj", Ja, e_acc[live])
-            q[live] = limits.project(q_acc[live] + np.linalg.solve(A, g[..., None])[..., 0])
-    return best_q, success, best_p, best_r, total
+        better = (cost < lanes.bcost) | ok
+        lanes.bq[better], lanes.bcost[better] = lanes.q[better], cost[better]
+        lanes.bp[better], lanes.br[better] = ep[better], er[better]
+        improved = cost < lanes.cost_acc
+        lanes.q_acc[improved], lanes.cost_acc[improved] = lanes.q[improved], cost[improved]
+        lanes.e_acc[improved], lanes.J_acc[improved] = e[improved], J[improved]
+        lanes.lam = np.where(improved, np.maximum(lanes.lam / 3.0, _LAMBDA_MIN),
+                             lanes.lam * 4.0)
+        # an attempt ends when it succeeds, after max_iter steps, or when λ has grown useless
+        stop = ok | (lanes.steps >= max_iter) | (lanes.lam > _LAMBDA_MAX)
+        fresh = None
+        if stop.any():
+            t, a = lanes.t[stop], lanes.a[stop]
+            ended[t, a], ok_at[t, a], it_at[t, a] = True, ok[stop], lanes.steps[stop]
+            cost_at[t, a], q_at[t, a] = lanes.bcost[stop], lanes.bq[stop]
+            p_at[t, a], r_at[t, a] = lanes.bp[stop], lanes.br[stop]
+            np.subtract.at(running, t, 1)
+            failed = t[~ok[stop]]
+            np.multiply.at(window, failed, GROWTH)
+            np.minimum(window, WINDOW_MAX, out=window)
+            hit = t[ok[stop]]
+            np.minimum.at(limit, hit, a[ok[stop]])  # later attempts cannot matter now
+            touched = np.unique(t)
+            first_open = np.where(ended[touched].all(axis=1), attempts,
+                                  np.argmin(ended[touched], axis=1))
+            decided[touched] = (limit[touched] < first_open) | (first_open >= attempts)
+            keep = ~stop & ~decided[lanes.t] & (lanes.a < limit[lanes.t])
+            dropped = lanes.t[~stop & ~keep]
+            np.subtract.at(running, dropped, 1)
+            lanes.keep(keep)
+            open_ = touched[~decided[touched]]
+            more = np.minimum(window[open_] - running[open_], limit[open_] - launched[open_])
+            more = np.maximum(more, 0)
+            if more.any():
+                new_t = np.repeat(open_, more)
+                base = np.repeat(launched[open_] - np.cumsum(more) + more, more)
+                new_a = base + np.arange(len(new_t))
+                launched[open_] += more
+                running[open_] += more
+                fresh = _launch(new_t, new_a, starts, rows)
+        if len(lanes.t):  # the damped step from the accepted point
+            Ja = lanes.J_acc[:, sel]
+            A = np.swapaxes(Ja, 1, 2) @ Ja + lanes.lam[:, None, None] * eye
+            g = np.einsum("nij,ni->nj", Ja, lanes.e_acc)
+            lanes.q = limits.project(lanes.q_acc + np.linalg.solve(A, g[..., None])[..., 0])
+        if fresh is not None:
+            lanes.extend(fresh)
+    rows_ = np.arange(n)
+    success = ok_at.any(axis=1)
+    k = np.where(success, np.argmax(ok_at, axis=1),
+                 np.argmin(np.where(np.isnan(cost_at), np.inf, cost_at), axis=1))
+    counted = np.arange(attempts) <= np.where(success, k, attempts)[:, None]
+    total = (it_at * counted).sum(axis=1)
+    return q_at[rows_, k], success, p_at[rows_, k], r_at[rows_, k], total

@@ -12,6 +12,7 @@ along it (prismatic). Every configuration in a batch is computed at once.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 import numpy as np
@@ -225,8 +226,7 @@ class Robot:
         link = self.resolve_link(link)
         a = self.check_limits(q) if check_limits else self.check_q(q)
         batch = a.shape[:-1]
-        T = _fk.run_chain(self.chain_table(link), self._table,
-                          a.reshape(int(np.prod(batch)), self.dof), self._path(link))
+        T = _fk.run_chain(self.chain_table(link), a.reshape(math.prod(batch), self.dof))
         return T.reshape(batch + (4, 4))
 
     def fk_and_jacobian(self, q, link=None) -> tuple[np.ndarray, np.ndarray]:
@@ -234,9 +234,8 @@ class Robot:
         link = self.resolve_link(link)
         a = self.check_q(q)
         batch = a.shape[:-1]
-        T, J = _fk.run_chain_jacobian(self.chain_table(link), self._table,
-                                      a.reshape(int(np.prod(batch)), self.dof),
-                                      self._path(link))
+        T, J = _fk.run_chain_jacobian(self.chain_table(link),
+                                      a.reshape(math.prod(batch), self.dof))
         return T.reshape(batch + (4, 4)), J.reshape(batch + (6, self.dof))
 
     def jacobian(self, q, link=None, *, frame=None) -> np.ndarray:
@@ -302,7 +301,7 @@ class Robot:
         """Pose of every link in the root frame: dict link name → ``(..., 4, 4)``."""
         a = self.check_limits(q) if check_limits else self.check_q(q)
         batch = a.shape[:-1]
-        frames = _fk.run(self._table, a.reshape(int(np.prod(batch)), self.dof), self._all)
+        frames = _fk.run(self._table, a.reshape(math.prod(batch), self.dof), self._all)
         return {name: frames[:, self._frame[name]].reshape(batch + (4, 4))
                 for name in self.link_names}
 

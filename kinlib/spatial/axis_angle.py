@@ -145,9 +145,25 @@ def log_so3(R):
 def _log_so3_unchecked(m: np.ndarray) -> np.ndarray:
     """:func:`log_so3` of rotations already known to be rotations (N, 3, 3), without the
     input checks: for loops that take the log of products of checked rotations at every
-    step (the IK's rotation error). The same route: Shepperd's quaternion, then
-    ``θ = 2 atan2(|v|, w)``."""
-    q = _quat_from_matrix_numpy(m)
-    v, s, angle = _half_turn_parts(q / np.linalg.norm(q, axis=-1, keepdims=True))
-    scale = np.where(s > 1e-300, angle / np.where(s > 1e-300, s, 1.0), 0.0)
-    return v * scale[..., None]
+    step (the IK's rotation error).
+
+    From the antisymmetric part ``(R − Rᵀ)/2 = sin θ [u]`` and ``cos θ = (tr R − 1)/2``:
+    ``θ = atan2(sin θ, cos θ)`` and ``θu = θ/sin θ · sin θ u``, accurate from θ = 0 (where
+    θ/sin θ → 1) up to about 3 rad; beyond, where ``sin θ u`` vanishes and its direction
+    is lost, the rotations go :func:`log_so3`'s route (Shepperd's quaternion, then
+    ``θ = 2 atan2(|v|, w)``), accurate up to π."""
+    v = 0.5 * np.stack([m[:, 2, 1] - m[:, 1, 2], m[:, 0, 2] - m[:, 2, 0],
+                        m[:, 1, 0] - m[:, 0, 1]], axis=-1)
+    s = np.sqrt(np.einsum("ni,ni->n", v, v))
+    angle = np.arctan2(s, 0.5 * (m[:, 0, 0] + m[:, 1, 1] + m[:, 2, 2] - 1.0))
+    w = v * np.where(s > 1e-300, angle / np.where(s > 1e-300, s, 1.0), 1.0)[:, None]
+    far = angle > _NEAR_HALF_TURN
+    if far.any():
+        q = _quat_from_matrix_numpy(m[far])
+        v, s, angle = _half_turn_parts(q / np.linalg.norm(q, axis=-1, keepdims=True))
+        w[far] = v * (angle / s)[..., None]  # s ≥ sin(3/2) here
+    return w
+
+
+#: above this angle (rad) the antisymmetric part of R loses the axis: the quaternion route
+_NEAR_HALF_TURN = 3.0
