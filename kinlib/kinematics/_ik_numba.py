@@ -98,6 +98,7 @@ def ik_lm(targets, starts, lo, hi, wrap, ints, floats, D, position_only, tol_p, 
         e_acc = np.empty(6)
         A = np.empty((dof, dof))
         g = np.empty(dof)
+        row = np.int64(0)  # Q's one row (typed as the FK kernels' row: _walk compiled once)
         best = np.inf
         found = False
         for a in range(attempts):
@@ -106,8 +107,10 @@ def ik_lm(targets, starts, lo, hi, wrap, ints, floats, D, position_only, tol_p, 
             lam = LAMBDA0
             cost_acc = np.inf
             for _ in range(max_iter):
-                _walk(Q, 0, ints, floats, D, T, Z, O)
-                J[:, :] = 0.0
+                _walk(Q, row, ints, floats, D, T, Z, O)
+                for r in range(6):  # (loops, not array expressions: quicker to compile)
+                    for j in range(dof):
+                        J[r, j] = 0.0
                 _columns(T, Z, O, ints, floats, J)
                 for r in range(3):
                     e[r] = targets[i, r, 3] - T[r, 3]
@@ -129,8 +132,10 @@ def ik_lm(targets, starts, lo, hi, wrap, ints, floats, D, position_only, tol_p, 
                     cost_acc = cost
                     for j in range(dof):
                         q_acc[j] = Q[0, j]
-                    J_acc[:, :] = J
-                    e_acc[:] = e
+                    for r in range(6):
+                        e_acc[r] = e[r]
+                        for j in range(dof):
+                            J_acc[r, j] = J[r, j]
                     lam = max(lam / 3.0, LAMBDA_MIN)
                 else:
                     lam *= 4.0
