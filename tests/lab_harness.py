@@ -148,9 +148,13 @@ class Lab:
         raise RuntimeError(f"jupyter lab did not answer within {timeout:g} s:\n"
                            + self.log.read_text(errors="replace")[-3000:])
 
-    def api(self, method: str, path: str, timeout: float = 10.0):
-        req = urllib.request.Request(self.url(path), method=method,
-                                     headers={"Authorization": f"token {self.token}"})
+    def api(self, method: str, path: str, timeout: float = 10.0, body: dict | None = None):
+        """A call of the server's REST API (``body``: sent as JSON); its JSON answer."""
+        headers = {"Authorization": f"token {self.token}"}
+        data = None
+        if body is not None:
+            data, headers["Content-Type"] = json.dumps(body).encode(), "application/json"
+        req = urllib.request.Request(self.url(path), data=data, method=method, headers=headers)
         with urllib.request.urlopen(req, timeout=timeout) as resp:
             body = resp.read()
         return json.loads(body) if body else None

@@ -1,12 +1,15 @@
 """The JupyterLab harness leaves nothing behind: not when a test fails, not when pytest
 itself is killed.
 
-Each case runs pytest in a subprocess on a small test file that starts a ``Lab``, runs a
-one-cell notebook that opens a 3-D viewer in the browser (so a kernel is running; the
-viewer widget starts no process of its own), records the pids that carry the run's marker,
-and then fails (``fail``) or waits to be SIGKILLed (``kill``). Afterwards no process may
-carry the marker and the port must be closed. The recorded pids are the control: the
-processes existed while the test ran.
+Each case runs pytest in a subprocess on a small test file that starts a ``Lab``, opens a
+one-cell notebook in it through the server's REST API (a session, as JupyterLab opens a
+notebook: the server starts its kernel), runs the cell in that kernel (it opens a 3-D
+viewer; the viewer widget starts no process of its own), records the pids that carry the
+run's marker, and then fails (``fail``) or waits to be SIGKILLed (``kill``). Afterwards no
+process may carry the marker and the port must be closed. The recorded pids are the
+control: the processes existed while the test ran. (No browser: the page holds no process
+of the harness; the browser suite, ``test_lab.py``, checks the same ``Lab.stop`` after its
+run of every notebook.)
 """
 
 from __future__ import annotations
@@ -34,9 +37,8 @@ INNER = '''
 import json, os, sys, time
 from pathlib import Path
 import pytest
-from browser_helpers import launch
+from jupyter_client import BlockingKernelClient
 from lab_harness import Lab, marked_processes
-from test_lab import open_notebook, run_all
 
 RECORD = Path(os.environ["RECORD"])
 
@@ -58,19 +60,27 @@ def cmdline(pid):
 
 
 def test_inner(lab):
-    name = "00_viewer"
-    cells = len(json.loads((lab.root / f"{name}.ipynb").read_text())["cells"])
-    with launch() as browser:
-        page = browser.new_page()
-        open_notebook(lab, page, name, cells)
-        run_all(page, name)
-        pids = marked_processes(lab.marker)
-        RECORD.write_text(json.dumps({"marker": lab.marker, "port": lab.port,
-                                      "pytest": os.getpid(),
-                                      "processes": {p: cmdline(p) for p in pids}}))
-        if os.environ["MODE"] == "kill":
-            time.sleep(300)  # the outer test kills this pytest
-        assert False, "a deliberate failure, with the lab running"
+    name = "00_viewer.ipynb"
+    session = lab.api("POST", "api/sessions", timeout=60, body={
+        "path": name, "name": name, "type": "notebook", "kernel": {"name": "python3"}})
+    connection = lab.work / "runtime" / f"kernel-{session['kernel']['id']}.json"
+    client = BlockingKernelClient(connection_file=str(connection))
+    client.load_connection_file()
+    client.start_channels()
+    try:
+        client.wait_for_ready(timeout=60)
+        code = json.loads((lab.root / name).read_text())["cells"][0]["source"]
+        reply = client.execute_interactive("".join(code), timeout=120)
+        assert reply["content"]["status"] == "ok", reply["content"]
+    finally:
+        client.stop_channels()
+    pids = marked_processes(lab.marker)
+    RECORD.write_text(json.dumps({"marker": lab.marker, "port": lab.port,
+                                  "pytest": os.getpid(),
+                                  "processes": {p: cmdline(p) for p in pids}}))
+    if os.environ["MODE"] == "kill":
+        time.sleep(300)  # the outer test kills this pytest
+    assert False, "a deliberate failure, with the lab running"
 '''
 
 
@@ -80,8 +90,7 @@ def _port_open(port: int) -> bool:
 
 
 @pytest.mark.parametrize("mode", ["fail", "kill"])
-def test_lab_leaves_nothing_running(mode, tmp_path, browser):
-    del browser  # only to skip (or fail under CI) exactly when the browser suite does
+def test_lab_leaves_nothing_running(mode, tmp_path):
     (tmp_path / "test_inner.py").write_text(INNER)
     notebooks = tmp_path / "notebooks"
     notebooks.mkdir()
