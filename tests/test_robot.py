@@ -12,7 +12,7 @@ from scipy.spatial.transform import Rotation
 
 from kinlib import DHRow, KinlibError, Robot, URDFError, load_urdf, planar_2r_fk
 from kinlib.kinematics import _fk
-from kinlib.models.tree import Joint, Link, Mimic
+from kinlib.models.tree import Joint, Link, Mimic, origin_from_xyz_rpy, xyz_rpy_from_origin
 from kinlib.robots import autorob_test_robot, panda, planar_2r, puma560, three_dof_arm, ur5
 
 ALL_MODELS = [planar_2r, three_dof_arm, puma560, ur5, panda, autorob_test_robot]
@@ -558,3 +558,23 @@ def test_origins_are_checked_unless_kinlib_built_them():
     expected[:3, :3] = Rotation.from_euler("xyz", [0.1, 0.2, 0.3]).as_matrix()  # extrinsic
     expected[:3, 3] = [1, 2, 3]
     assert np.allclose(origin, expected, atol=1e-15)
+
+
+def test_urdf_origin_is_scipys_extrinsic_xyz_and_round_trips():
+    """A URDF ``<origin rpy>`` is roll about x, then pitch about the fixed y, then yaw about
+    the fixed z: scipy's extrinsic "xyz"; back through xyz_rpy_from_origin away from lock."""
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        xyz = rng.normal(size=3)
+        rpy = rng.uniform(-np.pi, np.pi, 3) * [1, 0.49, 1]
+        T = origin_from_xyz_rpy(xyz, rpy)
+        np.testing.assert_allclose(T[:3, :3], Rotation.from_euler("xyz", rpy).as_matrix(),
+                                   atol=1e-15)
+        assert T[:3, 3].tolist() == xyz.tolist() and T[3].tolist() == [0, 0, 0, 1]
+        back_xyz, back_rpy = xyz_rpy_from_origin(T)
+        np.testing.assert_allclose(back_rpy, rpy, atol=1e-12)
+        np.testing.assert_array_equal(back_xyz, xyz)
+    with pytest.raises(KinlibError, match="rpy"):
+        origin_from_xyz_rpy([0, 0, 0], [0, float("nan"), 0])
+    with pytest.raises(KinlibError, match="xyz"):
+        origin_from_xyz_rpy([0, 0], [0, 0, 0])

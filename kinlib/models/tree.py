@@ -13,7 +13,7 @@ import numpy as np
 
 from .._validate import as_array, as_limits, as_unit_vectors
 from ..errors import KinlibError, TreeError
-from ..spatial.euler import euler_from_matrix, matrix_from_euler
+from ..spatial.euler import euler_from_matrix
 from ..spatial.transforms import check_transform
 
 __all__ = ["Joint", "Link", "Visual", "Mimic", "JOINT_TYPES", "origin_from_xyz_rpy",
@@ -65,10 +65,16 @@ def origin_from_xyz_rpy(xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)) -> np.ndarray:
     if xyz.ndim != 1 or rpy.ndim != 1:
         raise KinlibError(f"xyz, rpy: expected three numbers each, got shapes {xyz.shape} "
                           f"and {rpy.shape}")
-    T = np.eye(4)
-    T[:3, :3] = matrix_from_euler(rpy, "xyz")
-    T[:3, 3] = xyz
-    return T
+    roll, pitch, yaw = rpy.tolist()
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    x, y, z = xyz.tolist()
+    return np.array([  # Rz(yaw) Ry(pitch) Rx(roll), multiplied out (a robot file has
+        # thousands of these: no array arithmetic per joint)
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, x],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr, y],
+        [-sp, cp * sr, cp * cr, z],
+        [0.0, 0.0, 0.0, 1.0]])
 
 
 def xyz_rpy_from_origin(T) -> tuple[np.ndarray, np.ndarray]:
