@@ -60,6 +60,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/bench_diffkin.py
 	$(BIN)/python bench/bench_poe.py
 	$(BIN)/python bench/bench_numpy.py
+	$(BIN)/python bench/bench_first_call.py
 	$(BIN)/python bench/bench_grader.py
 
 clean:

@@ -9,18 +9,21 @@ exercise's check must say "right" there: ``pytest_runtest_call`` reads the check
 not right; the notebook's last cell also fails unless every exercise of the notebook was
 checked, once each, in order.
 
-The course site the browser tests read (``tests/test_site.py``) is built on kinlib's numpy
-path (``KINLIB_NUMBA=0``, as for a student without numba): so every notebook of the course
-runs once without the compiled kernels (the student edition; nbval runs the instructor
-edition and JupyterLab the student edition with them). It is built in the background
-from ``pytest_collection_finish`` when a collected test asks for it: ``python -m kinlib.site``
-runs (one notebook at a time) while the other tests run, and the ``site`` fixture (here)
-waits for it. Under pytest-xdist (``make test`` runs two workers) the build is shared: the
-controller makes its folder (``$KINLIB_TEST_SITE``), the first worker to collect starts it,
-and whichever worker runs the site's tests waits for its exit code there. The build
-belongs to the session, not to the worker that started it (a worker whose share of the
-tests ends early must not take the build with it): it ends when it is done, when the
-session's first process (the xdist controller, or pytest itself) exits, whose
+The course site the browser tests read (``tests/test_site.py``) comes from the student
+edition as JupyterLab ran it (``tests/test_lab.py``: kernels on kinlib's numpy path,
+``KINLIB_NUMBA=0``, as for a student without numba; widget state saved): each notebook
+JupyterLab saved goes to the session's folder (the ``site_feed`` fixture), and when the
+JupyterLab module ends, ``python -m kinlib.site --executed`` exports them in the background.
+So the student edition runs once for both, and nbval runs the instructor edition compiled.
+A session without the whole JupyterLab run (``pytest tests/test_site.py``, or ``-k``) builds
+the site by executing the notebooks instead, from ``pytest_collection_finish``, while the
+other tests run; so does a JupyterLab run that did not save every notebook. The ``site``
+fixture waits for the build. Under pytest-xdist (``make test`` runs two workers) the build
+is shared: the controller makes its folder (``$KINLIB_TEST_SITE``), the first process to
+ask starts it, and whichever worker runs the site's tests waits for its exit code there.
+The build belongs to the session, not to the worker that started it (a worker whose share
+of the tests ends early must not take the build with it): it ends when it is done, when
+the session's first process (the xdist controller, or pytest itself) exits, whose
 ``pytest_unconfigure`` stops it, or when that process dies (the build's wrapper watches it).
 """
 
@@ -59,12 +62,13 @@ SITE_OWNER_ENV = "KINLIB_TEST_SESSION_PID"  # the session's first process: owns 
 #: run by the build's own process (a new process group, whose leader writes ``pid``): the
 #: site, its log, and its exit code in a file when done; ended if the owner dies
 SITE_BUILD = """import os, subprocess, sys, time
-folder, jobs, owner = sys.argv[1], sys.argv[2], int(sys.argv[3])
+folder, jobs, owner, executed = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4:]
 with open(folder + "/pid", "w") as fh:
     fh.write(str(os.getpid()))
 with open(folder + "/build.log", "wb") as log:
+    source = ["--executed", "--notebooks", executed[0]] if executed else []
     build = subprocess.Popen([sys.executable, "-m", "kinlib.site", "--out", folder + "/site",
-                              "--jobs", jobs], stdout=log, stderr=subprocess.STDOUT,
+                              "--jobs", jobs, *source], stdout=log, stderr=subprocess.STDOUT,
                              env=dict(os.environ, KINLIB_NUMBA="0"))
     while build.poll() is None:
         try:
@@ -110,17 +114,19 @@ def pytest_configure(config):
         os.environ[SITE_ENV] = _state["site_folder"]
 
 
-def _start_site_build(jobs: int) -> None:
+def _start_site_build(jobs: int, executed: Path | None = None) -> None:
     """``python -m kinlib.site`` into the session's folder, in the background, once per
     session whichever process asks first (owned by the session, see above); when it ends,
-    the folder holds ``build.log`` and ``rc``."""
+    the folder holds ``build.log`` and ``rc``. ``executed``: a folder of notebooks that have
+    run (JupyterLab's, saved with their widget state), exported without running them."""
     folder = os.environ[SITE_ENV]
     try:
         os.close(os.open(os.path.join(folder, "started"), os.O_CREAT | os.O_EXCL))
     except FileExistsError:
         return  # another process of the session started it
     _state["site_build"] = subprocess.Popen(  # kept, to reap it if it is ours
-        [sys.executable, "-c", SITE_BUILD, folder, str(jobs), os.environ[SITE_OWNER_ENV]],
+        [sys.executable, "-c", SITE_BUILD, folder, str(jobs), os.environ[SITE_OWNER_ENV],
+         *([str(executed)] if executed is not None else [])],
         stdin=subprocess.DEVNULL, start_new_session=True, cwd=os.path.dirname(__file__))
 
 
@@ -137,11 +143,59 @@ def pytest_collection_modifyitems(session, config, items):
     items.sort(key=lambda item: rank.get(item.nodeid.split("::")[0], len(FIRST)))  # stable
 
 
+#: the browser suite's run of the student edition in JupyterLab (tests/test_lab.py)
+LAB_RUNS = "tests/test_lab.py::test_notebook_runs_in_jupyterlab["
+NOTEBOOKS = ROOT / "notebooks"
+
+
 def pytest_collection_finish(session):
     if session.config.option.collectonly:
         return
-    if any("site" in getattr(item, "fixturenames", ()) for item in session.items):
+    if not any("site" in getattr(item, "fixturenames", ()) for item in session.items):
+        return
+    runs = sum(item.nodeid.startswith(LAB_RUNS) for item in session.items)
+    if runs and runs == len(list(NOTEBOOKS.glob("[0-9][0-9]_*.ipynb"))):
+        _state["lab_feeds_site"] = True  # JupyterLab runs them all: the site from its saves
+    else:
         _start_site_build(jobs=1)  # one notebook at a time: the tests run on the other core
+
+
+class SiteFeed:
+    """What the JupyterLab run (tests/test_lab.py) hands the site build: each notebook as
+    JupyterLab saved it after *Run All Cells*, on the numpy path, widget state included.
+    :meth:`done` starts the site's export from them when the run saved every notebook of
+    the course; otherwise (a failed or partial run) the build executes the notebooks
+    itself, so that the site's tests still read a site. Nothing happens unless the session
+    collected the site's tests and the whole JupyterLab run."""
+
+    def __init__(self):
+        self.folder = Path(os.environ[SITE_ENV]) / "notebooks"
+        self.active = bool(_state.get("lab_feeds_site"))
+        if self.active:
+            self.folder.mkdir(exist_ok=True)
+
+    def save(self, name: str, nb: dict) -> None:
+        if self.active:
+            import json
+
+            tmp = self.folder / f"{name}.ipynb.tmp"
+            tmp.write_text(json.dumps(nb))
+            os.replace(tmp, self.folder / f"{name}.ipynb")
+
+    def done(self) -> None:
+        if not self.active:
+            return
+        expected = {p.name for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb")}
+        if expected and {p.name for p in self.folder.glob("*.ipynb")} == expected:
+            _start_site_build(jobs=1, executed=self.folder)
+        else:
+            _start_site_build(jobs=2)
+
+
+@pytest.fixture(scope="session")
+def site_feed():
+    """The JupyterLab run's notebooks for the site build (:class:`SiteFeed`)."""
+    return SiteFeed()
 
 
 @pytest.fixture(scope="session")
@@ -149,16 +203,18 @@ def site():
     """The course site (a folder), from the build started when the session was collected
     (by this process or another worker of the session), or from one started now. Fails
     with the build's log if the build failed."""
-    _start_site_build(jobs=2)  # does nothing if the build was started
+    if not _state.get("lab_feeds_site"):  # (else the JupyterLab run starts it when done)
+        _start_site_build(jobs=2)  # does nothing if the build was started
     folder = Path(os.environ[SITE_ENV])
-    waited, deadline = time.monotonic(), time.monotonic() + 600
+    waited, deadline = time.monotonic(), time.monotonic() + 900
     while not (folder / "rc").exists():
         if time.monotonic() > deadline:
-            pytest.fail("the site build did not finish in 600 s")
+            pytest.fail("the site build did not finish in 900 s")
         time.sleep(0.5)
     log = (folder / "build.log").read_text(errors="replace")
     assert (folder / "rc").read_text() == "0", f"the site build failed:\n{log[-4000:]}"
-    print(f"site build: {log.strip().splitlines()[-1]} (waited {time.monotonic() - waited:.1f} s)")
+    lines = log.strip().splitlines()
+    print(f"site build: {lines[0]}; {lines[-1]} (waited {time.monotonic() - waited:.1f} s)")
     return folder / "site"
 
 

@@ -4,7 +4,9 @@
 with every Jupyter directory (config, runtime, settings, workspaces, IPython) in a
 temporary folder, a random token, a copy of the notebooks (the run saves nothing into the
 repository), notebook windowing off (every cell stays in the page, so it can be read), and
-no news or update checks (nothing from the network). ``base_url`` serves it under a path,
+no news or update checks (nothing from the network); ``env`` is added to the server's
+environment (its kernels inherit it) and ``save_widget_state`` turns on JupyterLab's *Save
+Jupyter widget state in notebooks*. ``base_url`` serves it under a path,
 as a JupyterHub serves ``/user/NAME/``; ``app="notebook"`` starts Jupyter Notebook 7
 instead of JupyterLab.
 
@@ -43,6 +45,9 @@ SETTINGS = {
         "fetchNews": "false", "checkForUpdates": False},
 }
 
+#: JupyterLab's Jupyter Widgets settings (``saveState``: a save stores the widget state)
+WIDGETS_SETTINGS = "@jupyter-widgets/jupyterlab-manager/plugin.jupyterlab-settings"
+
 
 def free_port() -> int:
     with socket.socket() as s:
@@ -73,7 +78,8 @@ class Lab:
     """A JupyterLab server over a copy of ``notebooks`` (a folder), rooted in ``work``."""
 
     def __init__(self, notebooks: Path, work: Path, start_timeout: float = 60.0, *,
-                 base_url: str = "/", app: str = "lab"):
+                 base_url: str = "/", app: str = "lab", env: dict | None = None,
+                 save_widget_state: bool = False):
         if app not in ("lab", "notebook"):
             raise ValueError(f"app: 'lab' or 'notebook', got {app!r}")
         self.app = app
@@ -85,6 +91,8 @@ class Lab:
         self.port = free_port()
         self.proc: subprocess.Popen | None = None
         self.log = self.work / "lab.log"
+        self.extra_env = dict(env or {})  # for the server and its kernels
+        self.save_widget_state = save_widget_state
         shutil.copytree(notebooks, self.root, ignore=shutil.ignore_patterns(
             ".ipynb_checkpoints", "__pycache__"))
         self._start(start_timeout)
@@ -112,11 +120,15 @@ class Lab:
         env[MARK] = self.marker
         env.pop("MPLBACKEND", None)
         env["PYTHONUNBUFFERED"] = "1"
+        env.update(self.extra_env)
         return env
 
     def _start(self, timeout: float) -> None:
         env = self._env()
-        for name, values in SETTINGS.items():
+        settings = dict(SETTINGS)
+        if self.save_widget_state:  # a save stores the widget state, as nbclient's does
+            settings[WIDGETS_SETTINGS] = {"saveState": True}
+        for name, values in settings.items():
             path = Path(env["JUPYTERLAB_SETTINGS_DIR"]) / name
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text(json.dumps(values))

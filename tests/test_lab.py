@@ -21,8 +21,12 @@ count; afterwards the notebook is closed and its kernel shut down. Then:
 
 Screenshots of every notebook go to pytest's ``tmp_path``; with
 ``KINLIB_SCREENSHOTS=DIR`` (``make screenshots``), the two the README shows go to ``DIR``.
-The module fixture stops the server and its kernels even when a
-test fails, and checks that no process it started is left.
+The kernels run on kinlib's numpy path (``KINLIB_NUMBA=0``, as for a student without
+numba: nbval runs the instructor edition compiled), and JupyterLab saves the widget state:
+the notebooks it saves are the ones the course site is exported from (``site_feed``,
+../conftest.py), so the student edition runs once for both. The module fixture stops the
+server and its kernels even when a test fails, and checks that no process it started is
+left.
 """
 
 from __future__ import annotations
@@ -73,11 +77,19 @@ STATUS = """() => document.querySelector('.jp-Notebook-ExecutionIndicator')
 
 
 @pytest.fixture(scope="module")
-def lab(tmp_path_factory):
-    server = Lab(NOTEBOOKS, tmp_path_factory.mktemp("lab"))
+def lab(tmp_path_factory, site_feed):
+    """The module's JupyterLab, its kernels on kinlib's numpy path; what it saves feeds the
+    course site's build (``site_feed``), which starts when the module is done."""
+    try:
+        server = Lab(NOTEBOOKS, tmp_path_factory.mktemp("lab"), env={"KINLIB_NUMBA": "0"},
+                     save_widget_state=True)
+    except BaseException:
+        site_feed.done()
+        raise
     try:
         yield server
     finally:
+        site_feed.done()
         killed = server.stop()
         left = marked_processes(server.marker)
         assert not left, f"processes left running after the lab stopped: {left}"
@@ -271,7 +283,7 @@ def lab_page(lab, browser):
 
 
 @pytest.mark.parametrize("name", NAMES)
-def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path):
+def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path, site_feed):
     nb = json.loads((NOTEBOOKS / f"{name}.ipynb").read_text())
     n_code = sum(c["cell_type"] == "code" for c in nb["cells"])
     page, errors_so_far = lab_page, len(lab_page.errors)
@@ -292,6 +304,7 @@ def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path):
         assert [c["exercise"] for c in checked] == [e.id for e in exercises(name[:2])], checked
         answered = [c for c in checked if c["status"] != "unanswered"]
         assert not answered, f"{name}: a blank exercise is judged: {answered[0]}"
+        site_feed.save(name, saved)  # the course site's page of it is exported from this
 
         frames = viewer_frames(page)
         expected = "some" if name in VIEWERS else "none"

@@ -19,6 +19,7 @@ from kinlib.site import (
     index_html,
     offline_players,
     outline,
+    read_executed,
 )
 from kinlib.site._widgets import WIDGET_STATE, WIDGET_VIEW, freeze_widgets, render_widget
 
@@ -189,6 +190,46 @@ def test_a_small_site_is_built_from_scratch_and_rebuilt(tmp_path):
     (out / "stale.html").write_text("old")
     build_site(out, folder, log=lambda _: None)  # a previous build is replaced
     assert not (out / "stale.html").exists() and (out / "01_small.html").exists()
+
+
+def test_executed_notebooks_are_exported_as_saved_and_unrun_ones_refused(tmp_path):
+    """``executed=True`` (``--executed``): the pages are the saved outputs (nothing runs
+    again: a cell whose re-run would print something else still shows what it printed),
+    and a notebook with a cell that has not run, or an error, is refused by name."""
+    import subprocess
+    import sys
+
+    folder = tmp_path / "nbs"
+    folder.mkdir()
+    path = _notebook(folder, "01_saved", [
+        nbformat.v4.new_markdown_cell("# 01 · Saved"),
+        nbformat.v4.new_code_cell("import random\nprint(random.random())")])
+    nb = execute_notebook(path, timeout=60)
+    printed = nb.cells[1].outputs[0]["text"]
+    nbformat.write(nb, path)
+    out = tmp_path / "site"
+    build_site(out, folder, executed=True, log=lambda _: None)
+    assert f"<pre>{printed}</pre>" in (out / "01_saved.html").read_text()
+    cli = subprocess.run([sys.executable, "-m", "kinlib.site", "--out", str(tmp_path / "cli"),
+                          "--notebooks", str(folder), "--executed"],
+                         capture_output=True, text=True, timeout=300)
+    assert cli.returncode == 0, cli.stderr
+    assert f"<pre>{printed}</pre>" in (tmp_path / "cli" / "01_saved.html").read_text()
+
+    nb.cells.append(nbformat.v4.new_code_cell("1 + 1"))  # added after the run
+    nbformat.write(nb, path)
+    with pytest.raises(KinlibError, match=r"01_saved\.ipynb: cell 2 has not run"):
+        build_site(out, folder, executed=True, log=lambda _: None)
+    nb.cells[2].execution_count = 2
+    nb.cells[2].outputs = [nbformat.v4.new_output("error", ename="NameError",
+                                                  evalue="name 'q' is not defined")]
+    nbformat.write(nb, path)
+    with pytest.raises(KinlibError, match=r"cell 2 raised NameError: name 'q'"):
+        read_executed(path)
+    cli = subprocess.run([sys.executable, "-m", "kinlib.site", "--out", str(tmp_path / "cli"),
+                          "--notebooks", str(folder), "--executed"],
+                         capture_output=True, text=True, timeout=300)
+    assert cli.returncode == 1 and "cell 2 raised NameError" in cli.stderr, cli.stderr
 
 
 def test_without_the_course_tools_the_builder_names_the_extra(tmp_path, monkeypatch):

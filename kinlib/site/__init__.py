@@ -41,7 +41,8 @@ from .._optional import course_import
 from ..errors import KinlibError
 from ._widgets import freeze_widgets, with_viewer
 
-__all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "export_page",
+__all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "read_executed",
+           "export_page",
            "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
 
 #: the page template's folder, shipped with the package
@@ -238,10 +239,33 @@ def offline_players(page: str) -> str:
                   page)
 
 
-def _build_one(path: str, out: str, pages: list[PageInfo], timeout: float) -> tuple[str, float]:
+def read_executed(path: Path | str):
+    """The notebook at ``path`` as it was saved after a run (by JupyterLab, say): every code
+    cell must have run and none may hold an error; a :class:`KinlibError` names the first
+    that did not. Its widget state is whatever the save stored (JupyterLab stores it with
+    the Jupyter Widgets setting *Save Jupyter widget state in notebooks*)."""
+    nbformat = course_import("nbformat", "kinlib.site")
+    path = Path(path)
+    nb = nbformat.read(path, as_version=4)
+    for i, cell in enumerate(nb.cells):
+        if cell.cell_type != "code":
+            continue
+        if cell.get("execution_count") is None:
+            raise KinlibError(f"{path.name}: cell {i} has not run; execute the notebook "
+                              "first, or build without executed=True (--executed)")
+        error = next((o for o in cell.get("outputs", []) if o.get("output_type") == "error"),
+                     None)
+        if error is not None:
+            raise KinlibError(f"{path.name}: cell {i} raised {error.get('ename')}: "
+                              f"{error.get('evalue')}")
+    return nb
+
+
+def _build_one(path: str, out: str, pages: list[PageInfo], timeout: float,
+               executed: bool = False) -> tuple[str, float]:
     start = time.perf_counter()
     page = next(p for p in pages if p.name == Path(path).stem)
-    nb = execute_notebook(path, timeout)
+    nb = read_executed(path) if executed else execute_notebook(path, timeout)
     (Path(out) / page.href).write_text(export_page(nb, page, pages), encoding="utf-8")
     return page.name, time.perf_counter() - start
 
@@ -344,7 +368,8 @@ in <code>notebooks/</code>.</footer>
 
 def build_site(out: Path | str = "site", notebooks: Path | str | None = None, *,
                jobs: int = 1, timeout: float = 600.0, only: list[str] | None = None,
-               mathjax: Path | str | None = None, log=print) -> dict[str, float]:
+               mathjax: Path | str | None = None, executed: bool = False,
+               log=print) -> dict[str, float]:
     """Execute the notebooks and write the site to ``out``; seconds per notebook.
 
     ``jobs`` notebooks run at once (each in its own process and kernel). ``only`` restricts
@@ -352,7 +377,9 @@ def build_site(out: Path | str = "site", notebooks: Path | str | None = None, *,
     ``notebooks``: their folder (default ``notebooks/`` of the current directory).
     ``mathjax``: a MathJax 3 ``tex-svg-full.js`` to use (default: :func:`ensure_mathjax`).
     ``out`` is emptied first if it holds a previous build (a ``.kinlib-site`` marker); an
-    existing folder without one is refused rather than overwritten.
+    existing folder without one is refused rather than overwritten. ``executed=True``
+    exports the notebooks as they were saved, without running them (they must have run:
+    :func:`read_executed`), e.g. the ones a class ran and saved in JupyterLab.
     """
     folder = _folder(notebooks)
     out = Path(out)
@@ -381,7 +408,7 @@ def build_site(out: Path | str = "site", notebooks: Path | str | None = None, *,
           else nullcontext()) as pool:
         run = map if pool is None else pool.map  # in order; a failure is raised here
         for name, t in run(_build_one, paths, repeat(str(out)), repeat(pages),
-                           repeat(timeout)):
+                           repeat(timeout), repeat(bool(executed))):
             seconds[name] = t
             log(f"  {name}: {t:.1f} s")
     return seconds

@@ -1,9 +1,11 @@
-"""``python -m kinlib.site [--out site] [--notebooks notebooks] [--jobs N] [--only NAME ...]``:
-build the course site.
+"""``python -m kinlib.site [--out site] [--notebooks notebooks] [--jobs N] [--only NAME ...]
+[--executed]``: build the course site.
 
 Run from the course repository's root (``make site``), or give the folders: ``--notebooks``
 (default ``notebooks/``), ``--out`` (default ``site/``) and ``--mathjax`` (default: fetched
-once with npm into ``build/``), all relative to the current directory.
+once with npm into ``build/``), all relative to the current directory. ``--executed``
+exports notebooks that have run and were saved (with JupyterLab's *Save Jupyter widget
+state in notebooks* on, for the 3-D scenes) without running them again.
 
 Exit status 0 when every page was written, 1 when a notebook failed (its name and cell are
 printed), 2 for bad arguments (a missing notebooks folder among them) or when the course's
@@ -36,6 +38,9 @@ def main(argv=None) -> int:
                         help="seconds a single cell may run (default 600)")
     parser.add_argument("--only", nargs="+", metavar="NAME",
                         help="build only these notebooks (file names without .ipynb)")
+    parser.add_argument("--executed", action="store_true",
+                        help="the notebooks have run and were saved with their outputs and "
+                             "widget state: export them without running them")
     parser.add_argument("--mathjax", help="a MathJax 3 tex-svg-full.js to use (default: "
                         "fetched once with npm into build/)")
     args = parser.parse_args(argv)
@@ -51,10 +56,11 @@ def main(argv=None) -> int:
         print(f"{PROG}: {exc}", file=sys.stderr)
         return 2
     start = time.perf_counter()
-    print(f"building the course site in {Path(args.out).resolve()}")
+    how = "exporting the saved notebooks (not run again)" if args.executed else "building"
+    print(f"{how}: the course site in {Path(args.out).resolve()}")
     try:
         seconds = build_site(args.out, notebooks, jobs=args.jobs, timeout=args.timeout,
-                             only=args.only, mathjax=args.mathjax)
+                             only=args.only, mathjax=args.mathjax, executed=args.executed)
     except KinlibError as exc:
         print(f"site build failed: {exc}", file=sys.stderr)
         return 1
