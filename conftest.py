@@ -132,14 +132,17 @@ def _start_site_build(jobs: int, executed: Path | None = None) -> None:
 
 #: the files that take longest, in this order before all others: ``make test`` hands files to
 #: its two workers in collection order (``--no-loadscope-reorder``), so the long ones start
-#: at once and the short ones fill in around them (the site's tests come later, when the
-#: background build is done)
+#: at once and the short ones fill in around them
 FIRST = ("tests/test_lab.py", "tests/test_viewer_remote.py", "tests/test_lab_cleanup.py",
          "tests/test_urdf_errors.py", "tests/test_grader_hostile.py", "tests/test_sym_helpers.py")
 
 
+#: and this one after all others: its site comes from the JupyterLab run (the first file)
+LAST = "tests/test_site.py"
+
+
 def pytest_collection_modifyitems(session, config, items):
-    rank = {name: k for k, name in enumerate(FIRST)}
+    rank = {name: k for k, name in enumerate(FIRST)} | {LAST: len(FIRST) + 1}
     items.sort(key=lambda item: rank.get(item.nodeid.split("::")[0], len(FIRST)))  # stable
 
 
