@@ -137,13 +137,23 @@ FIRST = ("tests/test_lab.py", "tests/test_viewer_remote.py", "tests/test_lab_cle
          "tests/test_urdf_errors.py", "tests/test_grader_hostile.py", "tests/test_sym_helpers.py")
 
 
-#: and this one after all others: its site comes from the JupyterLab run (the first file)
-LAST = "tests/test_site.py"
+#: this one after the other test files, its site comes from the JupyterLab run (the first
+#: file), but before the notebooks under nbval and the doctests: many short files, which
+#: keep the other worker busy while this one runs
+LATE = "tests/test_site.py"
+
+
+def _rank(item) -> int:
+    path = item.nodeid.split("::")[0]
+    if path in FIRST:
+        return FIRST.index(path)
+    if path == LATE:
+        return len(FIRST) + 1
+    return len(FIRST) if path.startswith("tests/") else len(FIRST) + 2
 
 
 def pytest_collection_modifyitems(session, config, items):
-    rank = {name: k for k, name in enumerate(FIRST)} | {LAST: len(FIRST) + 1}
-    items.sort(key=lambda item: rank.get(item.nodeid.split("::")[0], len(FIRST)))  # stable
+    items.sort(key=_rank)  # stable
 
 
 #: the browser suite's run of the student edition in JupyterLab (tests/test_lab.py)

@@ -242,8 +242,8 @@ def offline_players(page: str) -> str:
 def read_executed(path: Path | str):
     """The notebook at ``path`` as it was saved after a run (by JupyterLab, say): every code
     cell must have run and none may hold an error; a :class:`KinlibError` names the first
-    that did not. Its widget state is whatever the save stored (JupyterLab stores it with
-    the Jupyter Widgets setting *Save Jupyter widget state in notebooks*)."""
+    that did not. Its widget state is whatever the save stored (JupyterLab stores it when
+    *Settings → Save Widget State Automatically* is ticked)."""
     nbformat = course_import("nbformat", "kinlib.site")
     path = Path(path)
     nb = nbformat.read(path, as_version=4)

@@ -4,8 +4,8 @@
 Run from the course repository's root (``make site``), or give the folders: ``--notebooks``
 (default ``notebooks/``), ``--out`` (default ``site/``) and ``--mathjax`` (default: fetched
 once with npm into ``build/``), all relative to the current directory. ``--executed``
-exports notebooks that have run and were saved (with JupyterLab's *Save Jupyter widget
-state in notebooks* on, for the 3-D scenes) without running them again.
+exports notebooks that have run and were saved (with JupyterLab's *Settings → Save Widget
+State Automatically* ticked, for the 3-D scenes) without running them again.
 
 Exit status 0 when every page was written, 1 when a notebook failed (its name and cell are
 printed), 2 for bad arguments (a missing notebooks folder among them) or when the course's
