@@ -29,6 +29,7 @@ the session's first process (the xdist controller, or pytest itself) exits, whos
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import signal
@@ -161,13 +162,18 @@ LAB_RUNS = "tests/test_lab.py::test_notebook_runs_in_jupyterlab["
 NOTEBOOKS = ROOT / "notebooks"
 
 
+def _course_notebooks() -> set[str]:
+    """The file names of the course's notebooks (the student edition)."""
+    return {p.name for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb")}
+
+
 def pytest_collection_finish(session):
     if session.config.option.collectonly:
         return
     if not any("site" in getattr(item, "fixturenames", ()) for item in session.items):
         return
     runs = sum(item.nodeid.startswith(LAB_RUNS) for item in session.items)
-    if runs and runs == len(list(NOTEBOOKS.glob("[0-9][0-9]_*.ipynb"))):
+    if runs and runs == len(_course_notebooks()):
         _state["lab_feeds_site"] = True  # JupyterLab runs them all: the site from its saves
     else:
         _start_site_build(jobs=1)  # one notebook at a time: the tests run on the other core
@@ -189,8 +195,6 @@ class SiteFeed:
 
     def save(self, name: str, nb: dict) -> None:
         if self.active:
-            import json
-
             tmp = self.folder / f"{name}.ipynb.tmp"
             tmp.write_text(json.dumps(nb))
             os.replace(tmp, self.folder / f"{name}.ipynb")
@@ -198,7 +202,7 @@ class SiteFeed:
     def done(self) -> None:
         if not self.active:
             return
-        expected = {p.name for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb")}
+        expected = _course_notebooks()
         if expected and {p.name for p in self.folder.glob("*.ipynb")} == expected:
             _start_site_build(jobs=1, executed=self.folder)
         else:

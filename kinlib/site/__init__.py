@@ -179,8 +179,7 @@ def execute_notebook(path: Path | str, timeout: float = 600.0):
     except CellTimeoutError as exc:
         raise KinlibError(f"{path.name}: a cell ran longer than {timeout:g} s") from exc
     except CellExecutionError as exc:
-        cell = next((i for i, c in enumerate(nb.cells) for o in c.get("outputs", [])
-                     if o.get("output_type") == "error"), None)
+        cell = next((i for i, c in enumerate(nb.cells) if _error_output(c)), None)
         raise KinlibError(f"{path.name}: cell {cell} raised {exc.ename}: "
                           f"{exc.evalue}") from None
     return nb
@@ -239,6 +238,11 @@ def offline_players(page: str) -> str:
                   page)
 
 
+def _error_output(cell) -> dict | None:
+    """The cell's first error output (a cell that raised), or None."""
+    return next((o for o in cell.get("outputs", []) if o.get("output_type") == "error"), None)
+
+
 def read_executed(path: Path | str):
     """The notebook at ``path`` as it was saved after a run (by JupyterLab, say): every code
     cell must have run and none may hold an error; a :class:`KinlibError` names the first
@@ -253,8 +257,7 @@ def read_executed(path: Path | str):
         if cell.get("execution_count") is None:
             raise KinlibError(f"{path.name}: cell {i} has not run; execute the notebook "
                               "first, or build without executed=True (--executed)")
-        error = next((o for o in cell.get("outputs", []) if o.get("output_type") == "error"),
-                     None)
+        error = _error_output(cell)
         if error is not None:
             raise KinlibError(f"{path.name}: cell {i} raised {error.get('ename')}: "
                               f"{error.get('evalue')}")
