@@ -14,16 +14,10 @@ STAMP  := $(VENV)/.kinlib-installed
 
 .PHONY: lab lab-instructor release test venv bench lint clean site screenshots
 
-# The install goes through uv (from PyPI, into the venv: about 10 s where pip takes about
-# 60 s); pip does it if uv cannot (say, a machine whose only package index is pip's own
-# configuration, which uv does not read).
-EXTRAS := .[lab,course,dev,fast]
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	( $(BIN)/python -m pip install --quiet uv \
-	  && $(BIN)/uv pip install --quiet --python $(BIN)/python -e '$(EXTRAS)' ) \
-	|| { $(BIN)/python -m pip install --quiet --upgrade pip \
-	     && $(BIN)/python -m pip install --quiet -e '$(EXTRAS)'; }
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[lab,course,dev,fast]'
 	touch $(STAMP)
 
 venv: $(STAMP)
@@ -44,11 +38,9 @@ lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/lint-imports
 
-# Three workers (pytest-xdist), also on two cores: with two, a third of the CPU time went
-# unused while tests waited on browsers, kernels and sandboxes. A file's tests stay together
-# in one worker (a notebook's cells share its kernel, a JupyterLab module its server); the
-# longest files first (conftest.py).
-WORKERS ?= 3
+# Two workers (pytest-xdist); a file's tests stay together in one worker (a notebook's cells
+# share its kernel, the JupyterLab suite its server); the longest files first (conftest.py).
+WORKERS ?= 2
 
 test: lint
 	$(BIN)/python -m pytest -n $(WORKERS) --dist loadfile --no-loadscope-reorder
@@ -59,7 +51,7 @@ site: $(STAMP)
 # The README's two JupyterLab screenshots, retaken by the browser suite (needs Chromium).
 screenshots: $(STAMP)
 	KINLIB_SCREENSHOTS=notebooks/screenshots KINLIB_REQUIRE_BROWSER=1 $(BIN)/python -m pytest \
-	    -q tests/test_lab.py tests/test_lab_08_to_15.py -k "04_gimbal_lock or 09_denavit_hartenberg"
+	    -q tests/test_lab.py -k "04_gimbal_lock or 09_denavit_hartenberg"
 
 bench: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e '.[bench]'

@@ -10,11 +10,10 @@ not right; the notebook's last cell also fails unless every exercise of the note
 checked, once each, in order.
 
 The course site the browser tests read (``tests/test_site.py``) comes from the student
-edition as JupyterLab ran it (``tests/test_lab.py`` and ``tests/test_lab_08_to_15.py``,
-the course's two parts side by side: kernels on kinlib's numpy path, ``KINLIB_NUMBA=0``, as
-for a student without numba; widget state saved): each notebook JupyterLab saved goes to
-the session's folder (the ``site_feed`` fixture), and when both JupyterLab modules have
-ended, ``python -m kinlib.site --executed`` exports them in the background.
+edition as JupyterLab ran it (``tests/test_lab.py``: kernels on kinlib's numpy path,
+``KINLIB_NUMBA=0``, as for a student without numba; widget state saved): each notebook
+JupyterLab saved goes to the session's folder (the ``site_feed`` fixture), and when the
+JupyterLab module ends, ``python -m kinlib.site --executed`` exports them in the background.
 So the student edition runs once for both, and nbval runs the instructor edition compiled.
 A session without the whole JupyterLab run (``pytest tests/test_site.py``, or ``-k``) builds
 the site by executing the notebooks instead, from ``pytest_collection_finish``, while the
@@ -133,10 +132,9 @@ def _start_site_build(jobs: int, executed: Path | None = None) -> None:
 
 
 #: the files that take longest, in this order before all others: ``make test`` hands files to
-#: its workers in collection order (``--no-loadscope-reorder``), so the long ones start at
-#: once and the short ones fill in around them
-FIRST = ("tests/test_lab_08_to_15.py", "tests/test_lab.py", "tests/test_viewer_remote.py",
-         "tests/test_lab_cleanup.py",
+#: its two workers in collection order (``--no-loadscope-reorder``), so the long ones start
+#: at once and the short ones fill in around them
+FIRST = ("tests/test_lab.py", "tests/test_viewer_remote.py", "tests/test_lab_cleanup.py",
          "tests/test_urdf_errors.py", "tests/test_grader_hostile.py", "tests/test_sym_helpers.py")
 
 
@@ -159,9 +157,8 @@ def pytest_collection_modifyitems(session, config, items):
     items.sort(key=_rank)  # stable
 
 
-#: the browser suite's run of the student edition in JupyterLab, in two parts (modules)
-LAB_PARTS = ("tests/test_lab.py", "tests/test_lab_08_to_15.py")
-LAB_RUN = "::test_notebook_runs_in_jupyterlab["
+#: the browser suite's run of the student edition in JupyterLab (tests/test_lab.py)
+LAB_RUNS = "tests/test_lab.py::test_notebook_runs_in_jupyterlab["
 NOTEBOOKS = ROOT / "notebooks"
 
 
@@ -175,28 +172,24 @@ def pytest_collection_finish(session):
         return
     if not any("site" in getattr(item, "fixturenames", ()) for item in session.items):
         return
-    runs = [item.nodeid.split("::")[0] for item in session.items
-            if LAB_RUN in item.nodeid and item.nodeid.split("::")[0] in LAB_PARTS]
-    if runs and len(runs) == len(_course_notebooks()):
+    runs = sum(item.nodeid.startswith(LAB_RUNS) for item in session.items)
+    if runs and runs == len(_course_notebooks()):
         _state["lab_feeds_site"] = True  # JupyterLab runs them all: the site from its saves
-        _state["lab_parts"] = sorted(set(runs))
     else:
         _start_site_build(jobs=1)  # one notebook at a time: the tests run on the other core
 
 
 class SiteFeed:
-    """What the JupyterLab run (its two parts, ``LAB_PARTS``) hands the site build: each
-    notebook as JupyterLab saved it after *Run All Cells*, on the numpy path, widget state
-    included. When every part is done (:meth:`done`; the parts may run in different
-    workers), the site's export from them starts if they saved every notebook of the
-    course; otherwise (a failed or partial run) the build executes the notebooks itself, so
-    that the site's tests still read a site. Nothing happens unless the session collected
-    the site's tests and the whole JupyterLab run."""
+    """What the JupyterLab run (tests/test_lab.py) hands the site build: each notebook as
+    JupyterLab saved it after *Run All Cells*, on the numpy path, widget state included.
+    :meth:`done` starts the site's export from them when the run saved every notebook of
+    the course; otherwise (a failed or partial run) the build executes the notebooks
+    itself, so that the site's tests still read a site. Nothing happens unless the session
+    collected the site's tests and the whole JupyterLab run."""
 
     def __init__(self):
         self.folder = Path(os.environ[SITE_ENV]) / "notebooks"
         self.active = bool(_state.get("lab_feeds_site"))
-        self.parts = _state.get("lab_parts", [])
         if self.active:
             self.folder.mkdir(exist_ok=True)
 
@@ -206,14 +199,9 @@ class SiteFeed:
             tmp.write_text(json.dumps(nb))
             os.replace(tmp, self.folder / f"{name}.ipynb")
 
-    def done(self, part: str) -> None:
-        """The JupyterLab part ``part`` (its module's file name) is over, passed or not."""
+    def done(self) -> None:
         if not self.active:
             return
-        (self.folder.parent / f"lab-done-{part}").touch()
-        if not all((self.folder.parent / f"lab-done-{Path(p).name}").exists()
-                   for p in self.parts):
-            return  # the other part still runs: it starts the build when it ends
         expected = _course_notebooks()
         if expected and {p.name for p in self.folder.glob("*.ipynb")} == expected:
             _start_site_build(jobs=1, executed=self.folder)

@@ -1,10 +1,6 @@
 """The student's view: every notebook of the student edition (``notebooks/``, every
 exercise blank) run in JupyterLab in a real (headless) browser.
 
-The course is run in two parts, each a module with its own server and page, so that
-pytest-xdist runs them side by side: this module runs notebooks 01–07, and
-``test_lab_08_to_15.py`` the rest with the same checks (``check_notebook``, below).
-
 One JupyterLab server for the module (``lab_harness.Lab``: free port, temporary config,
 a copy of the notebooks) and one browser page on it, in a fresh workspace. Each notebook is
 opened through JupyterLab (no reload, as a student opens the next one), the test waits for
@@ -59,9 +55,6 @@ from kinlib.check import exercises, results
 
 NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
 NAMES = sorted(p.stem for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb"))
-#: the two parts of the course (see above): this module's, and test_lab_08_to_15.py's
-PART1 = [n for n in NAMES if n < "08"]
-PART2 = [n for n in NAMES if n >= "08"]
 VIEWERS = {"04_gimbal_lock", "08_urdf_and_matrix_stack", "09_denavit_hartenberg",
            "10_inverse_kinematics_2r", "11_numerical_inverse_kinematics",
            "13_singularities_and_manipulability", "14_configuration_space_planning",
@@ -84,20 +77,19 @@ STATUS = """() => document.querySelector('.jp-Notebook-ExecutionIndicator')
 
 
 @pytest.fixture(scope="module")
-def lab(request, tmp_path_factory, site_feed):
+def lab(tmp_path_factory, site_feed):
     """The module's JupyterLab, its kernels on kinlib's numpy path; what it saves feeds the
-    course site's build (``site_feed``), which starts when every part is done."""
-    part = Path(request.fspath).name
+    course site's build (``site_feed``), which starts when the module is done."""
     try:
         server = Lab(NOTEBOOKS, tmp_path_factory.mktemp("lab"), env={"KINLIB_NUMBA": "0"},
                      save_widget_state=True)
     except BaseException:
-        site_feed.done(part)
+        site_feed.done()
         raise
     try:
         yield server
     finally:
-        site_feed.done(part)
+        site_feed.done()
         killed = server.stop()
         left = marked_processes(server.marker)
         assert not left, f"processes left running after the lab stopped: {left}"
@@ -290,17 +282,11 @@ def lab_page(lab, browser):
         context.close()
 
 
-@pytest.mark.parametrize("name", PART1)
+@pytest.mark.parametrize("name", NAMES)
 def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path, site_feed):
-    check_notebook(lab, lab_page, name, tmp_path, site_feed)
-
-
-def check_notebook(lab: Lab, page, name: str, tmp_path: Path, site_feed) -> None:
-    """Open ``name`` in the module's JupyterLab page, run it all and check it (see above);
-    then close it and its kernel."""
     nb = json.loads((NOTEBOOKS / f"{name}.ipynb").read_text())
     n_code = sum(c["cell_type"] == "code" for c in nb["cells"])
-    errors_so_far = len(page.errors)
+    page, errors_so_far = lab_page, len(lab_page.errors)
     try:
         open_notebook(lab, page, name, len(nb["cells"]))
         start = time.monotonic()
