@@ -187,13 +187,16 @@ def _pool() -> ThreadPoolExecutor:
 def in_threads(kernel, n: int, args_of, min_batch: int = PARALLEL_MIN):
     """``kernel(*args_of(0, n))``, computed as slices ``[a, b)`` of the batch in threads, one
     per core, when ``n >= min_batch`` (the compiled kernels release the GIL); the slices'
-    results (an array, or a tuple of arrays) joined in order."""
+    results (an array, or a tuple of arrays) joined in order, or None for a kernel that
+    writes into slices of arrays it is given and returns None."""
     k = min(THREADS, n // max(1, min_batch // 2)) if n >= min_batch else 1
     if k <= 1:
         return kernel(*args_of(0, n))
     bounds = np.linspace(0, n, k + 1).astype(np.int64)
     futures = [_pool().submit(kernel, *args_of(a, b)) for a, b in itertools.pairwise(bounds)]
     parts = [f.result() for f in futures]
+    if parts[0] is None:
+        return None
     if isinstance(parts[0], tuple):
         return tuple(np.concatenate(p) for p in zip(*parts, strict=True))
     return np.concatenate(parts)

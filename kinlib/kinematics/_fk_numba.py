@@ -155,6 +155,8 @@ def _columns(T, Z, O, ints, floats, J):  # pragma: no cover - compiled
             J[2, col] += w * z2
 
 
+# Arrays are made with np.empty and filled by loops, never np.zeros or another dtype: each
+# allocation function and dtype numba meets is one more compilation on a first call.
 CHUNKS = 64  # scratch arrays are allocated once per chunk of configurations, not per one
 
 
@@ -171,7 +173,7 @@ def chain(q, ints, floats, D):  # pragma: no cover - compiled
     """
     N = q.shape[0]
     m = ints.shape[1]
-    out = np.zeros((N, 4, 4))
+    out = np.empty((N, 4, 4))
     for blk in range((N + BLOCK - 1) // BLOCK):
         start = blk * BLOCK
         nb = min(BLOCK, N - start)
@@ -214,6 +216,8 @@ def chain(q, ints, floats, D):  # pragma: no cover - compiled
         for i in range(nb):
             for e in range(12):
                 out[start + i, e // 4, e % 4] = T[e, i]
+            for e in range(3):
+                out[start + i, 3, e] = 0.0
             out[start + i, 3, 3] = 1.0
     return out
 
@@ -224,8 +228,8 @@ def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
     added into the column of the q that drives it (mimic joints share a column)."""
     N = q.shape[0]
     m = ints.shape[1]
-    out = np.zeros((N, 4, 4))
-    J = np.zeros((N, 6, dof))
+    out = np.empty((N, 4, 4))
+    J = np.empty((N, 6, dof))
     chunks = min(N, CHUNKS)
     for c in range(chunks):
         T = np.empty((3, 4))
@@ -236,7 +240,12 @@ def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
             for r in range(3):
                 for k in range(4):
                     out[i, r, k] = T[r, k]
+            for k in range(3):
+                out[i, 3, k] = 0.0
             out[i, 3, 3] = 1.0
+            for r in range(6):
+                for k in range(dof):
+                    J[i, r, k] = 0.0
             _columns(T, Z, O, ints, floats, J[i])
     return out, J
 

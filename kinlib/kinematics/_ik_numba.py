@@ -77,16 +77,15 @@ def _solve_spd(A, b, n):  # pragma: no cover - compiled
 
 
 def ik_lm(targets, starts, lo, hi, wrap, ints, floats, D, position_only, tol_p, tol_r,
-          max_iter):  # pragma: no cover - compiled
+          max_iter, q_out, success, pe_out, re_out, iters):  # pragma: no cover - compiled
+    """Solve target i from its starts into q_out[i], success[i] (bool), pe_out[i],
+    re_out[i] and iters[i] (int64), arrays the caller made: allocating a bool and an
+    int64 array here would cost the first call two more compilations."""
     n, attempts, dof = starts.shape
     m = ints.shape[1]
     rows = 3 if position_only else 6
-    q_out = np.empty((n, dof))
-    success = np.zeros(n, dtype=np.bool_)
-    pe_out = np.empty(n)
-    re_out = np.empty(n)
-    iters = np.zeros(n, dtype=np.int64)
     for i in range(n):
+        iters[i] = 0
         Q = np.empty((1, dof))
         q_acc = np.empty(dof)
         T = np.empty((3, 4))
@@ -162,7 +161,6 @@ def ik_lm(targets, starts, lo, hi, wrap, ints, floats, D, position_only, tol_p, 
             if found:
                 break
         success[i] = found
-    return q_out, success, pe_out, re_out, iters
 
 
 ik_lm = numba.njit(cache=True, nogil=True)(ik_lm)

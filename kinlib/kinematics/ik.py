@@ -196,11 +196,14 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
     kernels = _compiled_ik() if compiled is not False else None
     if kernels is not None:
         chain = robot.chain_table(link)
-        q, success, pe, re, iters = in_threads(
-            kernels.ik_lm, n, lambda a, b: (T_t[a:b], starts[a:b], limits.lo, limits.hi,
-                                            limits.wrap, chain.ints, chain.floats, chain.D,
-                                            position_only, tol_p, tol_r, max_iterations),
-            min_batch=8)
+        out = (np.empty((n, robot.dof)), np.empty(n, dtype=bool), np.empty(n), np.empty(n),
+               np.empty(n, dtype=np.int64))  # q, success, errors, iterations: filled by ik_lm
+        in_threads(kernels.ik_lm, n,
+                   lambda a, b: (T_t[a:b], starts[a:b], limits.lo, limits.hi, limits.wrap,
+                                 chain.ints, chain.floats, chain.D, position_only, tol_p,
+                                 tol_r, max_iterations, *(o[a:b] for o in out)),
+                   min_batch=8)
+        q, success, pe, re, iters = out
     else:
         q, success, pe, re, iters = _solve_numpy(robot, link, T_t, starts, limits,
                                                  position_only, tol_p, tol_r, max_iterations)
