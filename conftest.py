@@ -87,19 +87,26 @@ os.replace(folder + "/rc.tmp", folder + "/rc")
 
 #: run once by the controller before the workers start: numba compiles kinlib's kernels into
 #: its cache (kinlib/__pycache__), so the workers, notebook kernels and the site build load
-#: them instead of each compiling them at once on a clean clone (~18 s each, cold)
-WARM_KERNELS = """
+#: them instead of each compiling them at once on a clean clone. Two processes side by side
+#: (the FK, Jacobian and conversion kernels; the IK loop), one per core: about half the
+#: time of one after the other (numba compiles one function at a time in a process)
+WARM_KERNELS = ("""
 import numpy as np
 import kinlib as kl
 from kinlib.robots import puma560
 robot, rng = puma560(), np.random.default_rng(0)
 q = rng.uniform(-1, 1, (5000, 6))
 robot.fk(q[0]), robot.jacobian(q[0]), robot.fk(q), robot.jacobian(q), robot.link_poses(q)
-robot.ik(robot.fk(q[:3] + 0.1), q0=q[:3])
-robot.ik(robot.fk(q[0] + 0.1))
 kl.quat_from_matrix(kl.matrix_from_quat(rng.normal(size=(5000, 4))))
 kl.is_rotation(kl.matrix_from_quat(rng.normal(size=(5000, 4))))
-"""
+""", """
+import numpy as np
+from kinlib.robots import puma560
+robot, rng = puma560(), np.random.default_rng(0)
+q = rng.uniform(-1, 1, (3, 6))
+robot.ik(robot.fk(q + 0.1), q0=q)
+robot.ik(robot.fk(q[0] + 0.1))
+""")
 
 
 def pytest_configure(config):
@@ -107,8 +114,10 @@ def pytest_configure(config):
     if hasattr(config, "workerinput"):
         return  # an xdist worker: the controller made the folder
     if getattr(config.option, "numprocesses", None) and not config.option.collectonly:
-        subprocess.run([sys.executable, "-c", WARM_KERNELS], check=False,
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        warm = [subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.DEVNULL,
+                                 stderr=subprocess.DEVNULL) for script in WARM_KERNELS]
+        for process in warm:
+            process.wait()
     os.environ[SITE_OWNER_ENV] = str(os.getpid())
     if not os.environ.get(SITE_ENV):
         _state["site_folder"] = tempfile.mkdtemp(prefix="kinlib-site-")
