@@ -102,8 +102,12 @@ def _session(lab: Lab, name: str) -> dict | None:
 
 
 #: in a page where JupyterLab runs: open a notebook (as a double click in the file browser
-#: would), and close every document without asking to save (the file is saved already)
-OPEN = "path => window.jupyterapp.commands.execute('docmanager:open', {path})"
+#: would), and close every document without asking to save (the file is saved already).
+#: OPEN answers null, not the command's result: that is the notebook's widget, and handing
+#: it back would have Playwright walk JupyterLab's objects to serialise it (2–3 s a
+#: notebook)
+OPEN = ("path => window.jupyterapp.commands.execute('docmanager:open', {path})"
+        ".then(() => null)")
 CLOSE_ALL = """() => { for (const w of Array.from(window.jupyterapp.shell.widgets('main')))
   w.dispose(); }"""
 
