@@ -134,7 +134,11 @@ def _walk(q, i, ints, floats, D, T, Z, O):  # pragma: no cover - compiled
 
 @numba.njit(cache=True)
 def _columns(T, Z, O, ints, floats, J):  # pragma: no cover - compiled
-    """Add each moving joint's column (times its multiplier) into J (6, dof)."""
+    """The geometric Jacobian into J (6, dof): zeroed, then each moving joint's column
+    (times its multiplier) added into the column of the q that drives it."""
+    for r in range(6):  # (loops, not array expressions: quicker to compile)
+        for j in range(J.shape[1]):
+            J[r, j] = 0.0
     for k in range(ints.shape[1]):
         col = ints[1, k]
         w = floats[0, k]
@@ -243,9 +247,6 @@ def chain_jacobian(q, ints, floats, D, dof):  # pragma: no cover - compiled
             for k in range(3):
                 out[i, 3, k] = 0.0
             out[i, 3, 3] = 1.0
-            for r in range(6):
-                for k in range(dof):
-                    J[i, r, k] = 0.0
             _columns(T, Z, O, ints, floats, J[i])
     return out, J
 

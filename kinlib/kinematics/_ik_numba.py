@@ -107,9 +107,6 @@ def ik_lm(targets, starts, lo, hi, wrap, ints, floats, D, position_only, tol_p, 
             cost_acc = np.inf
             for _ in range(max_iter):
                 _walk(Q, row, ints, floats, D, T, Z, O)
-                for r in range(6):  # (loops, not array expressions: quicker to compile)
-                    for j in range(dof):
-                        J[r, j] = 0.0
                 _columns(T, Z, O, ints, floats, J)
                 for r in range(3):
                     e[r] = targets[i, r, 3] - T[r, 3]

@@ -42,8 +42,7 @@ from ..errors import KinlibError
 from ._widgets import freeze_widgets, with_viewer
 
 __all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "read_executed",
-           "export_page",
-           "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
+           "export_page", "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
 
 #: the page template's folder, shipped with the package
 TEMPLATES = resources.files(__package__) / "templates"
