@@ -89,6 +89,25 @@ def test_numpy_attempts_side_by_side_answer_as_one_after_another():
     np.testing.assert_allclose(fast.q[ref.success], ref.q[ref.success], rtol=0, atol=1e-9)
 
 
+def test_numpy_path_runs_every_restart_of_an_unreachable_target():
+    """With the default 100 restarts an unreachable target runs all 101 attempts to their
+    30th step on both paths (3,030 iterations: no attempt's damping grows past its bound
+    this far out), and both end at the same closest pose. The numpy path launches them in
+    windows (1, then 64, then the last 36); its second window's 64 failures in one step
+    once overflowed the window's growth, and the last 36 attempts were never run."""
+    robot = puma560()
+    T = np.repeat(np.eye(4)[None], 2, axis=0)
+    T[:, :3, 3] = [[2.0, 0.0, 0.5], [0.0, -1.5, 1.0]]  # both beyond the ~0.9 m reach
+    fast = robot.ik(T)
+    ref = ik.solve_ik(robot, T, compiled=False)
+    assert not ref.success.any() and not fast.success.any()
+    np.testing.assert_array_equal(ref.iterations, [101 * 30, 101 * 30])
+    np.testing.assert_array_equal(fast.iterations, ref.iterations)
+    np.testing.assert_allclose(fast.position_error, ref.position_error, rtol=1e-9)
+    np.testing.assert_allclose(fast.q, ref.q, atol=1e-6)
+    check_solutions(robot, T, ref)
+
+
 def test_unreachable_target_is_never_success():
     robot = puma560()
     T = np.eye(4)

@@ -227,8 +227,8 @@ def _compiled_ik():
     return _load_kernels("_ik_numba")
 
 
-#: the numpy path's attempts side by side (see _solve_numpy): each failed attempt of a
-#: target multiplies how many of its attempts may run at once by GROWTH, up to WINDOW_MAX.
+#: the numpy path's attempts side by side (see _solve_numpy): a step in which attempts of a
+#: target fail multiplies how many of its attempts may run at once by GROWTH, up to WINDOW_MAX.
 #: bench/bench_numpy.py: growth 8 and 64 at once take an unreachable PUMA 560 target in
 #: about a third of the time of growth 2 and 32; growth 64 (the first attempt alone, then
 #: 64 at once) in 0.014-0.031 s against 0.020-0.039 s for growth 8, in each of six pairs
@@ -274,13 +274,13 @@ def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, 
     A target's attempts do not depend on each other (each starts afresh from its own
     start), only the answer does: the first attempt, in order, that succeeds; else the
     closest pose of all, the first of equals. So the attempts of every target run side by
-    side as lanes of one vectorised loop: first one per target, then, each time one fails,
-    :data:`GROWTH` times as many (at most :data:`WINDOW_MAX`). A target is decided once an attempt
-    succeeded and every earlier one has ended, or when all have failed; its lanes still
-    running are then dropped, and the iterations reported are those of the attempts up to
-    the deciding one, as if run one after another: the same answers and counts as the
-    compiled loop, without paying numpy's cost per call once per restart of an unreachable
-    target."""
+    side as lanes of one vectorised loop: first one per target, then, after each step in
+    which some fail, :data:`GROWTH` times as many (at most :data:`WINDOW_MAX`). A target is
+    decided once an attempt succeeded and every earlier one has ended, or when all have
+    failed; its lanes still running are then dropped, and the iterations reported are
+    those of the attempts up to the deciding one, as if run one after another: the same
+    answers and counts as the compiled loop, without paying numpy's cost per call once per
+    restart of an unreachable target."""
     n, attempts, dof = starts.shape
     rows = 3 if position_only else 6
     sel = slice(0, rows)
@@ -322,9 +322,11 @@ def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, 
             cost_at[t, a], q_at[t, a] = lanes.bcost[stop], lanes.bq[stop]
             p_at[t, a], r_at[t, a] = lanes.bp[stop], lanes.br[stop]
             np.subtract.at(running, t, 1)
-            failed = t[~ok[stop]]
-            np.multiply.at(window, failed, GROWTH)
-            np.minimum(window, WINDOW_MAX, out=window)
+            # a target with failures in this step: GROWTH times the window, up to WINDOW_MAX
+            # (once per step: once per failure, 64 failing together overflowed int64 to 0,
+            # and the target's later attempts were never launched)
+            failed = np.unique(t[~ok[stop]])
+            window[failed] = np.minimum(window[failed] * GROWTH, WINDOW_MAX)
             hit = t[ok[stop]]
             np.minimum.at(limit, hit, a[ok[stop]])  # later attempts cannot matter now
             touched = np.unique(t)
