@@ -71,12 +71,18 @@ def test_numpy_reference_agrees_with_the_compiled_loop(model):
                                atol=1e-6)
 
 
-def test_numpy_attempts_side_by_side_answer_as_one_after_another():
+@pytest.mark.parametrize("lanes", [(1, 64, 64, 8192), (128, 128, 128, 8192), (1, 2, 2, 8192),
+                                   (128, 128, 128, 64)], ids=lambda v: "-".join(map(str, v)))
+def test_numpy_attempts_side_by_side_answer_as_one_after_another(lanes, monkeypatch):
     """The numpy path runs a target's restarts side by side; its answer must still be that
     of running them in order: the first attempt that succeeds (not the first to finish),
-    and the steps of the attempts up to it. Six steps per attempt (to 1 mm and 1 mrad)
+    and the steps of the attempts up to it, however many run at once (first lanes,
+    window per target, growth, lanes in all). Six steps per attempt (to 1 mm and 1 mrad)
     make many attempts fail, so successes come at scattered attempts, several in flight
     at once."""
+    for name, value in zip(("FIRST_LANES", "WINDOW_MAX", "GROWTH", "LANES_MAX"), lanes,
+                           strict=True):
+        monkeypatch.setattr(ik, name, value)
     robot = puma560()
     T = reachable_targets(robot, 60, seed=21)
     settings = dict(max_iterations=6, restarts=40, tol_position=1e-3, tol_rotation=1e-3)

@@ -227,14 +227,22 @@ def _compiled_ik():
     return _load_kernels("_ik_numba")
 
 
-#: the numpy path's attempts side by side (see _solve_numpy): a step in which attempts of a
-#: target fail multiplies how many of its attempts may run at once by GROWTH, up to WINDOW_MAX.
-#: bench/bench_numpy.py: growth 8 and 64 at once take an unreachable PUMA 560 target in
-#: about a third of the time of growth 2 and 32; growth 64 (the first attempt alone, then
-#: 64 at once) in 0.014-0.031 s against 0.020-0.039 s for growth 8, in each of six pairs
-#: of runs, with reachable targets as quick (median 10-14 ms both)
-WINDOW_MAX = 64
-GROWTH = 64
+#: the numpy path's attempts side by side (see _solve_numpy). Numpy's cost per call, not the
+#: arithmetic, is what a step of a few lanes costs, so a solve starts with FIRST_LANES lanes
+#: in all (its targets' first attempts, FIRST_LANES // n each, at least one); a step in which
+#: attempts of a target fail multiplies how many of its attempts may run at once by GROWTH,
+#: up to WINDOW_MAX, and up to LANES_MAX // n (a few kB per lane; 64 unreachable targets
+#: together took 0.47-0.73 s with 1,024 lanes, 0.55-0.65 s with 2,048 and 0.61-0.82 s with
+#: 8,192: beyond that, numpy's arrays outgrow the caches, not its calls). bench_numpy.py,
+#: PUMA 560, one target (five interleaved runs of 2026-12-03): an unreachable target's 101
+#: attempts all at once took 13-21 ms, against 17-28 ms starting with 16 and 21-31 ms with 4
+#: (then the other 85 or 97 together); reachable targets' median 8-10 ms against 6-8 ms:
+#: the worst case halves for a few milliseconds on the common one. The first attempt alone,
+#: then 64 together (the setting before): unreachable 34-43 ms, reachable 14-16 ms
+FIRST_LANES = 128
+WINDOW_MAX = 128
+GROWTH = 128
+LANES_MAX = 2048
 
 
 class _Lanes:
@@ -274,8 +282,9 @@ def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, 
     A target's attempts do not depend on each other (each starts afresh from its own
     start), only the answer does: the first attempt, in order, that succeeds; else the
     closest pose of all, the first of equals. So the attempts of every target run side by
-    side as lanes of one vectorised loop: first one per target, then, after each step in
-    which some fail, :data:`GROWTH` times as many (at most :data:`WINDOW_MAX`). A target is
+    side as lanes of one vectorised loop: first :data:`FIRST_LANES` in all (at least one
+    per target), then, after each step in which some fail, :data:`GROWTH` times as many
+    (at most :data:`WINDOW_MAX` per target, and :data:`LANES_MAX` // n). A target is
     decided once an attempt succeeded and every earlier one has ended, or when all have
     failed; its lanes still running are then dropped, and the iterations reported are
     those of the attempts up to the deciding one, as if run one after another: the same
@@ -293,12 +302,14 @@ def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, 
     cost_at = np.full((n, attempts), np.inf)
     q_at = np.repeat(starts[:, :1], attempts, axis=1)
     p_at, r_at = np.full((n, attempts), np.inf), np.full((n, attempts), np.inf)
-    window = np.ones(n, dtype=np.int64)
-    running = np.ones(n, dtype=np.int64)
-    launched = np.ones(n, dtype=np.int64)       # attempts started so far: 0 .. launched − 1
+    first = min(attempts, max(1, FIRST_LANES // n))  # attempts each target starts with
+    widest = max(first, min(WINDOW_MAX, LANES_MAX // n))  # at most at once, per target
+    window = np.full(n, first, dtype=np.int64)
+    running = np.full(n, first, dtype=np.int64)
+    launched = np.full(n, first, dtype=np.int64)  # attempts started so far: 0 .. launched − 1
     limit = np.full(n, attempts)                # attempts that can still matter
     decided = np.zeros(n, dtype=bool)
-    lanes = _launch(np.arange(n), np.zeros(n, dtype=np.int64), starts, rows)
+    lanes = _launch(np.repeat(np.arange(n), first), np.tile(np.arange(first), n), starts, rows)
     while len(lanes.t):
         T, J = _fk.run_chain_jacobian(chain, lanes.q, compiled=False)
         e, ep, er = _errors(T_t[lanes.t], T, position_only)
@@ -326,7 +337,7 @@ def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, 
             # (once per step: once per failure, 64 failing together overflowed int64 to 0,
             # and the target's later attempts were never launched)
             failed = np.unique(t[~ok[stop]])
-            window[failed] = np.minimum(window[failed] * GROWTH, WINDOW_MAX)
+            window[failed] = np.minimum(window[failed] * GROWTH, widest)
             hit = t[ok[stop]]
             np.minimum.at(limit, hit, a[ok[stop]])  # later attempts cannot matter now
             touched = np.unique(t)
