@@ -90,10 +90,12 @@ def lab(tmp_path_factory, site_feed):
         yield server
     finally:
         site_feed.done()
+        closed = server.closed_sessions()  # (each shut its kernel down, or failed to)
         killed = server.stop()
         left = marked_processes(server.marker)
         assert not left, f"processes left running after the lab stopped: {left}"
         assert not killed, f"these needed SIGKILL to stop: {killed}; see {server.log}"
+        assert all(status == 204 for status in closed), f"closing sessions: {closed}"
 
 
 def _session(lab: Lab, name: str) -> dict | None:
@@ -332,7 +334,7 @@ def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path, site_feed):
         page.evaluate(CLOSE_ALL)
         session = _session(lab, name)
         if session is not None:  # close the kernel, as a student closing the tab would
-            lab.api("DELETE", f"api/sessions/{session['id']}")
+            lab.close_session(session["id"])
 
 
 def take_readme_shot(page, name: str, tmp_path: Path) -> None:
