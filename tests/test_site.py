@@ -332,18 +332,25 @@ def test_nbconvert_kinlib_html_shows_scenes_offline(browser, tmp_path):
     nbformat.write(nb, tmp_path / "one.ipynb")
     run = [sys.executable, "-m", "jupyter", "nbconvert"]
     # one command executes and exports (the exporter found by its entry point) ...
-    done = subprocess.run(run + ["--to", "kinlib_html", "--execute", "--output",
-                                 "one_kinlib_html", "one.ipynb"], cwd=tmp_path,
-                          capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-3000:]
-    # ... and the control: nbconvert's own HTML of the same executed notebook
-    from nbclient import NotebookClient
-    from nbconvert import HTMLExporter
+    done = subprocess.Popen(run + ["--to", "kinlib_html", "--execute", "--output",
+                                   "one_kinlib_html", "one.ipynb"], cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        # ... and the control, meanwhile: nbconvert's own HTML of the same notebook, run
+        from nbclient import NotebookClient
+        from nbconvert import HTMLExporter
 
-    ran = nbformat.read(tmp_path / "one.ipynb", as_version=4)
-    NotebookClient(ran, timeout=300, kernel_name="python3", store_widget_state=True).execute()
-    html, _ = HTMLExporter().from_notebook_node(ran)
-    (tmp_path / "one_html.html").write_text(html, encoding="utf-8")
+        ran = nbformat.read(tmp_path / "one.ipynb", as_version=4)
+        NotebookClient(ran, timeout=300, kernel_name="python3",
+                       store_widget_state=True).execute()
+        html, _ = HTMLExporter().from_notebook_node(ran)
+        (tmp_path / "one_html.html").write_text(html, encoding="utf-8")
+        _, stderr = done.communicate(timeout=300)
+    finally:
+        if done.poll() is None:
+            done.kill()
+            done.wait()
+    assert done.returncode == 0, stderr[-3000:]
     page = tmp_path / "one_kinlib_html.html"
     seen = open_scene(browser, page, tmp_path / "kinlib_html.png", orbit=True)
     assert seen["axis"] >= AXIS_SEEN, f"{seen['axis']} joint-axis pixels; see {tmp_path}"
