@@ -114,6 +114,13 @@ def test_numpy_path_runs_every_restart_of_an_unreachable_target():
     check_solutions(robot, T, ref)
 
 
+@pytest.mark.parametrize("compiled", [None, False], ids=["compiled", "numpy"])
+def test_an_empty_batch_of_targets(compiled):
+    robot = puma560()
+    sol = ik.solve_ik(robot, np.zeros((0, 4, 4)), compiled=compiled)
+    assert sol.q.shape == (0, 6) and sol.success.shape == (0,) and sol.iterations.shape == (0,)
+
+
 def test_unreachable_target_is_never_success():
     robot = puma560()
     T = np.eye(4)

@@ -302,8 +302,8 @@ def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, 
     cost_at = np.full((n, attempts), np.inf)
     q_at = np.repeat(starts[:, :1], attempts, axis=1)
     p_at, r_at = np.full((n, attempts), np.inf), np.full((n, attempts), np.inf)
-    first = min(attempts, max(1, FIRST_LANES // n))  # attempts each target starts with
-    widest = max(first, min(WINDOW_MAX, LANES_MAX // n))  # at most at once, per target
+    first = min(attempts, max(1, FIRST_LANES // max(n, 1)))  # each target's first attempts
+    widest = max(first, min(WINDOW_MAX, LANES_MAX // max(n, 1)))  # at most at once, each
     window = np.full(n, first, dtype=np.int64)
     running = np.full(n, first, dtype=np.int64)
     launched = np.full(n, first, dtype=np.int64)  # attempts started so far: 0 .. launched − 1
