@@ -75,7 +75,7 @@ def test_inner(lab):
     finally:
         client.stop_channels()
     pids = marked_processes(lab.marker)
-    RECORD.write_text(json.dumps({"marker": lab.marker, "port": lab.port,
+    RECORD.write_text(json.dumps({"marker": lab.marker, "port": lab.port, "root": str(lab.root),
                                   "pytest": os.getpid(),
                                   "processes": {p: cmdline(p) for p in pids}}))
     if os.environ["MODE"] == "kill":
@@ -84,9 +84,36 @@ def test_inner(lab):
 '''
 
 
-def _port_open(port: int) -> bool:
-    with socket.socket() as s:
-        return s.connect_ex(("127.0.0.1", port)) == 0
+def _listeners(port: int) -> list[str]:
+    """The command lines of the processes listening on TCP ``port`` (from /proc/net: a
+    socket in LISTEN state, and the processes holding it; "?" for one whose holder is not
+    found). Connecting would not do: on a busy machine another test's server or kernel may
+    be given the freed port, and a connect to a port nobody listens on can even succeed
+    (a socket connected to itself, when its own ephemeral port is that port)."""
+    inodes = set()
+    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+        try:
+            rows = Path(table).read_text().splitlines()[1:]
+        except OSError:
+            continue
+        for row in rows:
+            f = row.split()
+            if int(f[1].rsplit(":", 1)[1], 16) == port and f[3] == "0A":  # 0A: LISTEN
+                inodes.add(f[9])
+    holders = {}
+    for entry in os.listdir("/proc") if inodes else []:
+        if not entry.isdigit():
+            continue
+        try:
+            fds = os.listdir(f"/proc/{entry}/fd")
+            for fd in fds:
+                link = os.readlink(f"/proc/{entry}/fd/{fd}")
+                if link.startswith("socket:[") and link[8:-1] in inodes:
+                    holders[link[8:-1]] = Path(f"/proc/{entry}/cmdline").read_bytes() \
+                        .replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+    return [holders.get(inode, "?") for inode in sorted(inodes)]
 
 
 @pytest.mark.parametrize("mode", ["fail", "kill"])
@@ -123,6 +150,7 @@ def test_lab_leaves_nothing_running(mode, tmp_path):
     running = " ".join(facts["processes"].values())
     assert "jupyter" in running and "ipykernel" in running, running  # the control
     assert "meshcat" not in running, running  # the viewer is a widget: no server
+    assert facts["root"] in running, running  # the port check below knows the server by it
     if mode == "fail":
         assert inner.returncode == 1 and "a deliberate failure" in out, out[-3000:]
     else:
@@ -132,4 +160,20 @@ def test_lab_leaves_nothing_running(mode, tmp_path):
         time.sleep(0.25)
     assert not left, f"left running after the {mode}: " + "; ".join(
         facts["processes"].get(str(p), str(p)) for p in left)
-    assert not _port_open(facts["port"]), "JupyterLab's port is still open"
+    # nothing of this run listens on its port (another test's process may, since it was freed)
+    ours = [c for c in _listeners(facts["port"]) if c == "?" or facts["root"] in c]
+    assert not ours, f"JupyterLab's port is still open: {ours}"
+
+
+def test_the_port_check_sees_a_listener():
+    """The control for the port check: a socket listening here is found, with this
+    process's command line; once closed, nothing listens."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+        assert _listeners(port) == []  # bound, not listening
+        s.listen()
+        found = _listeners(port)
+        mine = Path("/proc/self/cmdline").read_bytes().replace(b"\0", b" ").decode()
+        assert found == [mine], (found, mine)
+    assert _listeners(port) == []
