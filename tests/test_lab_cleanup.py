@@ -68,7 +68,19 @@ def test_inner(lab):
     client.load_connection_file()
     client.start_channels()
     try:
-        client.wait_for_ready(timeout=60)
+        # the kernel is ready once it answers kernel_info (not wait_for_ready: a client that
+        # no manager made also asks for heartbeats, and on a loaded machine one that comes
+        # a second late made it report the kernel dead)
+        deadline = time.monotonic() + 60
+        while True:
+            asked = client.kernel_info()
+            try:
+                reply = client.get_shell_msg(timeout=5)
+            except Exception:  # queue.Empty: no answer yet
+                assert time.monotonic() < deadline, "the kernel did not answer kernel_info"
+                continue
+            if reply["parent_header"].get("msg_id") == asked:
+                break
         code = json.loads((lab.root / name).read_text())["cells"][0]["source"]
         reply = client.execute_interactive("".join(code), timeout=120)
         assert reply["content"]["status"] == "ok", reply["content"]
