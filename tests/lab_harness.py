@@ -163,16 +163,20 @@ class Lab:
         raise RuntimeError(f"jupyter lab did not answer within {timeout:g} s:\n"
                            + self.log.read_text(errors="replace")[-3000:])
 
-    def api(self, method: str, path: str, timeout: float = 10.0, body: dict | None = None):
-        """A call of the server's REST API (``body``: sent as JSON); its JSON answer."""
+    def _request(self, method: str, path: str, timeout: float, body: dict | None = None):
+        """A call of the server's REST API (``body``: sent as JSON): (status, raw answer)."""
         headers = {"Authorization": f"token {self.token}"}
         data = None
         if body is not None:
             data, headers["Content-Type"] = json.dumps(body).encode(), "application/json"
         req = urllib.request.Request(self.url(path), data=data, method=method, headers=headers)
         with urllib.request.urlopen(req, timeout=timeout) as resp:
-            body = resp.read()
-        return json.loads(body) if body else None
+            return resp.status, resp.read()
+
+    def api(self, method: str, path: str, timeout: float = 10.0, body: dict | None = None):
+        """A call of the server's REST API (``body``: sent as JSON); its JSON answer."""
+        _, answer = self._request(method, path, timeout, body)
+        return json.loads(answer) if answer else None
 
     def close_session(self, session_id: str) -> None:
         """Close a notebook's session (its kernel shuts down) without waiting, as JupyterLab
@@ -180,12 +184,8 @@ class Lab:
         stopped, 0.3-0.9 s here) comes while the next notebook opens. See
         :meth:`closed_sessions`."""
         def close():
-            req = urllib.request.Request(self.url(f"api/sessions/{session_id}"),
-                                         method="DELETE",
-                                         headers={"Authorization": f"token {self.token}"})
             try:
-                with urllib.request.urlopen(req, timeout=60) as resp:
-                    status = resp.status
+                status, _ = self._request("DELETE", f"api/sessions/{session_id}", 60)
             except urllib.error.HTTPError as e:
                 status = e.code
             except OSError as e:

@@ -95,12 +95,17 @@ def test_numpy_attempts_side_by_side_answer_as_one_after_another(lanes, monkeypa
     np.testing.assert_allclose(fast.q[ref.success], ref.q[ref.success], rtol=0, atol=1e-9)
 
 
-def test_numpy_path_runs_every_restart_of_an_unreachable_target():
+@pytest.mark.parametrize("lanes", [(1, 64, 64), (128, 128, 128)], ids=["1-64", "128"])
+def test_numpy_path_runs_every_restart_of_an_unreachable_target(lanes, monkeypatch):
     """With the default 100 restarts an unreachable target runs all 101 attempts to their
     30th step on both paths (3,030 iterations: no attempt's damping grows past its bound
     this far out), and both end at the same closest pose. The numpy path launches them in
-    windows (1, then 64, then the last 36); its second window's 64 failures in one step
-    once overflowed the window's growth, and the last 36 attempts were never run."""
+    windows: with (first lanes, window, growth) = (1, 64, 64), the setting of old, one, then
+    64, then the last 36, where the second window's 64 failures in one step once overflowed
+    the window's growth and the last 36 attempts were never run; with today's 128, the two
+    targets 64 each, then the last 37 each."""
+    for name, value in zip(("FIRST_LANES", "WINDOW_MAX", "GROWTH"), lanes, strict=True):
+        monkeypatch.setattr(ik, name, value)
     robot = puma560()
     T = np.repeat(np.eye(4)[None], 2, axis=0)
     T[:, :3, 3] = [[2.0, 0.0, 0.5], [0.0, -1.5, 1.0]]  # both beyond the ~0.9 m reach

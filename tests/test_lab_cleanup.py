@@ -36,6 +36,7 @@ viz.jupyter_cell(height=200)"""
 INNER = '''
 import json, os, sys, time
 from pathlib import Path
+from queue import Empty
 import pytest
 from jupyter_client import BlockingKernelClient
 from lab_harness import Lab, marked_processes
@@ -76,7 +77,7 @@ def test_inner(lab):
             asked = client.kernel_info()
             try:
                 reply = client.get_shell_msg(timeout=5)
-            except Exception:  # queue.Empty: no answer yet
+            except Empty:  # no answer yet
                 assert time.monotonic() < deadline, "the kernel did not answer kernel_info"
                 continue
             if reply["parent_header"].get("msg_id") == asked:
@@ -94,6 +95,11 @@ def test_inner(lab):
         time.sleep(300)  # the outer test kills this pytest
     assert False, "a deliberate failure, with the lab running"
 '''
+
+
+def _cmdline(pid: int | str) -> str:
+    return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode(
+        errors="replace")
 
 
 def _listeners(port: int) -> list[str]:
@@ -121,8 +127,7 @@ def _listeners(port: int) -> list[str]:
             for fd in fds:
                 link = os.readlink(f"/proc/{entry}/fd/{fd}")
                 if link.startswith("socket:[") and link[8:-1] in inodes:
-                    holders[link[8:-1]] = Path(f"/proc/{entry}/cmdline").read_bytes() \
-                        .replace(b"\0", b" ").decode(errors="replace")
+                    holders[link[8:-1]] = _cmdline(entry)
         except OSError:
             continue
     return [holders.get(inode, "?") for inode in sorted(inodes)]
@@ -186,6 +191,5 @@ def test_the_port_check_sees_a_listener():
         assert _listeners(port) == []  # bound, not listening
         s.listen()
         found = _listeners(port)
-        mine = Path("/proc/self/cmdline").read_bytes().replace(b"\0", b" ").decode()
-        assert found == [mine], (found, mine)
+        assert found == [_cmdline("self")], found
     assert _listeners(port) == []

@@ -231,14 +231,10 @@ def _compiled_ik():
 #: arithmetic, is what a step of a few lanes costs, so a solve starts with FIRST_LANES lanes
 #: in all (its targets' first attempts, FIRST_LANES // n each, at least one); a step in which
 #: attempts of a target fail multiplies how many of its attempts may run at once by GROWTH,
-#: up to WINDOW_MAX, and up to LANES_MAX // n (a few kB per lane; 64 unreachable targets
-#: together took 0.47-0.73 s with 1,024 lanes, 0.55-0.65 s with 2,048 and 0.61-0.82 s with
-#: 8,192: beyond that, numpy's arrays outgrow the caches, not its calls). bench_numpy.py,
-#: PUMA 560, one target (five interleaved runs of 2026-12-03): an unreachable target's 101
-#: attempts all at once took 13-21 ms, against 17-28 ms starting with 16 and 21-31 ms with 4
-#: (then the other 85 or 97 together); reachable targets' median 8-10 ms against 6-8 ms:
-#: the worst case halves for a few milliseconds on the common one. The first attempt alone,
-#: then 64 together (the setting before): unreachable 34-43 ms, reachable 14-16 ms
+#: up to WINDOW_MAX, and up to LANES_MAX // n (a few kB per lane: beyond that, numpy's arrays
+#: outgrow the caches). The settings tried and their times: bench/README.md, "Without a
+#: compiler" (one unreachable PUMA 560 target: 13-21 ms all at once, 34-43 ms with the
+#: setting before, the first attempt alone and then 64)
 FIRST_LANES = 128
 WINDOW_MAX = 128
 GROWTH = 128
@@ -333,7 +329,7 @@ def _solve_numpy(robot, link, T_t, starts, limits, position_only, tol_p, tol_r, 
             cost_at[t, a], q_at[t, a] = lanes.bcost[stop], lanes.bq[stop]
             p_at[t, a], r_at[t, a] = lanes.bp[stop], lanes.br[stop]
             np.subtract.at(running, t, 1)
-            # a target with failures in this step: GROWTH times the window, up to WINDOW_MAX
+            # a target with failures in this step: GROWTH times the window, up to `widest`
             # (once per step: once per failure, 64 failing together overflowed int64 to 0,
             # and the target's later attempts were never launched)
             failed = np.unique(t[~ok[stop]])
