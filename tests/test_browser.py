@@ -94,3 +94,75 @@ def test_puma_in_the_static_page(browser, tmp_path):
     assert masks["turned"].sum() >= SEEN
     assert changed_fraction(masks["first"], masks["turned"]) > 0.5  # joint 1 turned 90°
     assert masks["empty"].sum() <= EMPTY, f"{masks['empty'].sum()} robot pixels, robot deleted"
+
+
+#: the first scene of a page: how many display frames its loop has used, and renders
+LOOP = "() => { const s = document.querySelector('.kinlib-scene').kinlibScene.stats; " \
+       "return [s.ticks, s.renders]; }"
+PLAYING = "() => document.querySelector('.kinlib-scene').kinlibScene.viewer.animator.playing"
+PLAY = "() => document.querySelector('.kinlib-scene').kinlibScene.viewer.animator.play()"
+FRAMES = """ms => new Promise(done => { let n = 0; const t0 = performance.now();
+  const f = () => { n += 1; if (performance.now() - t0 < ms) requestAnimationFrame(f);
+                    else done(n); };
+  requestAnimationFrame(f); })"""
+
+
+def test_an_idle_viewer_uses_no_frames_until_something_changes(browser, tmp_path):
+    """A viewer draws on demand: once the picture is drawn its loop stops (no display frame
+    used while the page offers dozens), and a mouse drag (the camera orbits) or playing
+    its animation starts it again, until there is nothing left to draw. The control for
+    "stopped": the page's own frame counter, in the same second, counts the display
+    frames the browser offers."""
+    from kinlib.viz import RobotVisualizer
+
+    robot = puma560()
+    viz = RobotVisualizer(robot, prefix="idle_puma", color=MAGENTA)
+    viz.set_camera_position([1.1, -1.0, 0.8])
+    viz.set_configuration(np.zeros(6))
+    qs = np.linspace(0, 1, 15)[:, None] * np.array([1.5, -0.5, 0.8, 0, 0.5, 0])
+    viz.animate(qs, fps=30)  # half a second, played once when the page loads
+    (tmp_path / "idle.html").write_text(viz.static_html(), encoding="utf-8")
+    viz.close()
+    context = browser.new_context(viewport={"width": 800, "height": 600})
+    try:
+        context.route(re.compile(r"^https?://"), lambda route: route.abort())
+        page = context.new_page()
+        page.goto((tmp_path / "idle.html").as_uri())
+        page.wait_for_selector(".kinlib-scene canvas", timeout=15_000)
+        wait_for_picture(page, lambda m: m.sum() >= SEEN)
+        page.wait_for_function(f"() => !({PLAYING})()", timeout=15_000)
+
+        def idle_second() -> tuple[int, int]:
+            """(frames the viewer used, frames the page was offered) in one second."""
+            ticks0, _ = page.evaluate(LOOP)
+            offered = page.evaluate(FRAMES, 1000)
+            return page.evaluate(LOOP)[0] - ticks0, offered
+
+        used, offered = idle_second()
+        assert offered >= 10, f"the browser offered only {offered} frames in a second"
+        assert used <= 1, f"an idle viewer used {used} of {offered} display frames"
+
+        before = page.screenshot()
+        _, renders0 = page.evaluate(LOOP)
+        box = page.locator(".kinlib-scene canvas").first.bounding_box()
+        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+        page.mouse.move(x, y)
+        page.mouse.down()
+        for k in range(1, 11):
+            page.mouse.move(x + 15 * k, y + 3 * k)
+        page.mouse.up()
+        page.wait_for_timeout(300)
+        _, renders1 = page.evaluate(LOOP)
+        orbited = robot_mask(page.screenshot())
+        assert renders1 > renders0, "the drag drew nothing"
+        assert changed_fraction(robot_mask(before), orbited) > 0.2, "the camera did not orbit"
+        assert idle_second()[0] <= 1, "the loop kept running after the drag"
+
+        page.evaluate(PLAY)  # meshcat's Play button
+        assert page.evaluate(PLAYING)
+        page.wait_for_function(f"() => !({PLAYING})()", timeout=15_000)
+        _, renders2 = page.evaluate(LOOP)
+        assert renders2 - renders1 >= 5, f"{renders2 - renders1} renders while it played"
+        assert idle_second()[0] <= 1, "the loop kept running after the animation ended"
+    finally:
+        context.close()
