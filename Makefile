@@ -14,17 +14,15 @@ STAMP  := $(VENV)/.kinlib-installed
 
 .PHONY: lab lab-instructor release test venv bench lint clean site screenshots
 
-# The install goes through uv (from PyPI, into the venv: about 5 s from uv's cache where pip
-# takes about 60 s); pip does it if uv cannot (say, on a machine whose only package index is
-# pip's own configuration, which uv does not read). uv does not compile every installed
-# module's bytecode (pip does: 30 s more here); Python compiles a module the first time it
-# is imported and keeps it, so only what is used is compiled, once (the first JupyterLab
-# start and the first notebook's imports take about 7 s more, once; DEVELOPERS.md).
+# The install goes through uv (from PyPI, into the venv: about 25 s where pip takes about
+# 60 s; --compile-bytecode as pip does, else every first import compiles its module); pip
+# does it if uv cannot (say, on a machine whose only package index is pip's own
+# configuration, which uv does not read).
 EXTRAS := .[lab,course,dev,fast]
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	( $(BIN)/python -m pip install --quiet uv \
-	  && $(BIN)/uv pip install --quiet --python $(BIN)/python -e '$(EXTRAS)' ) \
+	  && $(BIN)/uv pip install --quiet --compile-bytecode --python $(BIN)/python -e '$(EXTRAS)' ) \
 	|| { $(BIN)/python -m pip install --quiet --upgrade pip \
 	     && $(BIN)/python -m pip install --quiet -e '$(EXTRAS)'; }
 	touch $(STAMP)
