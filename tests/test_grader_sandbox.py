@@ -30,13 +30,15 @@ def run_cells(worker, *sources, timeout=30.0):
 
 
 def test_memory_limit_stops_a_growing_allocation(sandbox):
-    # 2.5 GB in 250 MB steps: fine for this machine, over the 1 GiB limit given here
+    # 1.25 GB in 125 MB steps, every page written: over the 1 GiB limit given here, under
+    # the control's 2 GiB (each page written costs time on this machine: 2.5 GB took the
+    # test 10-25 s)
     grow = ("import numpy as np\nkeep = []\nfor _ in range(10):\n"
-            "    keep.append(np.ones(31_250_000))")
+            "    keep.append(np.ones(15_625_000))")
     with Worker(sandbox=sandbox, memory_mb=1024) as w:
         (end,) = run_cells(w, grow)
         assert not end["ok"] and "MemoryError" in end["error"]
-    with Worker(sandbox=sandbox, memory_mb=4096) as w:  # the control: a higher limit
+    with Worker(sandbox=sandbox, memory_mb=2048) as w:  # the control: a higher limit
         (end,) = run_cells(w, grow)
         assert end["ok"], end
 
