@@ -38,6 +38,18 @@ def drag_slider(page, slider, dx: float) -> None:
     page.mouse.up()
 
 
+def orbit_drag(page, element) -> None:
+    """Drag the mouse from the middle of ``element`` 150 pixels right and 30 down, as a
+    student orbits a 3-D view."""
+    box = element.bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 11):
+        page.mouse.move(x + 15 * k, y + 3 * k)
+    page.mouse.up()
+
+
 def unavailable(reason: str):
     if os.environ.get("KINLIB_REQUIRE_BROWSER") == "1":
         pytest.fail(f"KINLIB_REQUIRE_BROWSER=1 but {reason}")

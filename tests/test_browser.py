@@ -14,7 +14,7 @@ import re
 import time
 
 import numpy as np
-from browser_helpers import EMPTY, changed_fraction
+from browser_helpers import EMPTY, changed_fraction, orbit_drag
 
 from kinlib.robots import puma560
 
@@ -144,13 +144,7 @@ def test_an_idle_viewer_uses_no_frames_until_something_changes(browser, tmp_path
 
         before = page.screenshot()
         _, renders0 = page.evaluate(LOOP)
-        box = page.locator(".kinlib-scene canvas").first.bounding_box()
-        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
-        page.mouse.move(x, y)
-        page.mouse.down()
-        for k in range(1, 11):
-            page.mouse.move(x + 15 * k, y + 3 * k)
-        page.mouse.up()
+        orbit_drag(page, page.locator(".kinlib-scene canvas").first)
         page.wait_for_timeout(300)
         _, renders1 = page.evaluate(LOOP)
         orbited = robot_mask(page.screenshot())

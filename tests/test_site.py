@@ -38,6 +38,7 @@ from browser_helpers import (
     assert_robot_drawn,
     element_shooter,
     joint_axis_mask,
+    orbit_drag,
     pixels_changed,
     settled,
     wait_for_mask,
@@ -280,13 +281,7 @@ def open_scene(browser, page_file: Path, shot: Path, timeout: float = 15.0,
         if orbit:
             still = settled(shoot)
             seen["still"] = pixels_changed(still, shoot())
-            box = scene_el.bounding_box()
-            x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
-            page.mouse.move(x, y)
-            page.mouse.down()
-            for k in range(1, 11):
-                page.mouse.move(x + 15 * k, y + 3 * k)
-            page.mouse.up()
+            orbit_drag(page, scene_el)
             moved = settled(shoot)
             shot.with_name(shot.stem + "_orbited.png").write_bytes(moved)
             seen["orbited"] = pixels_changed(still, moved)
