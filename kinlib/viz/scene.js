@@ -57,8 +57,9 @@ function kinlibMountScene(MeshCat, el, height) {
   let frame = 0;
   // The loop runs only while there is something to draw: a frame is asked for when meshcat
   // marks the scene dirty (a command, a pose, the mouse orbiting, a resize) or an animation
-  // plays, and no more once a frame has nothing to draw. An idle viewer costs no CPU (a
-  // loop running at the display's rate cost about a tenth of a core per viewer in headless
+  // starts to play (while it plays, meshcat's animator marks the scene dirty every frame),
+  // and no more once a frame has nothing to draw. An idle viewer costs no CPU (a loop
+  // running at the display's rate cost about a tenth of a core per viewer in headless
   // Chromium, and drains a laptop's battery as well).
   function tick() {
     frame = 0;
@@ -77,7 +78,6 @@ function kinlibMountScene(MeshCat, el, height) {
         wrap.dataset.lastSeqDrawn = String(stats.seq);
       }
     }
-    if (viewer.animator.playing || viewer.needs_render) wake();
   }
   function wake() {
     if (alive && !frame) frame = requestAnimationFrame(tick);
