@@ -18,13 +18,24 @@ STAMP  := $(VENV)/.kinlib-installed
 # 60 s; --compile-bytecode as pip does, else every first import compiles its module); pip
 # does it if uv cannot (say, on a machine whose only package index is pip's own
 # configuration, which uv does not read).
+#
+# One transitive package is left out, through uv's override with a marker no machine has:
+# rfc3987-syntax, which jsonschema imports when it is installed (jupyter-events asks for
+# jsonschema[format-nongpl]) to check the "iri" string format, and which compiles 38 lark
+# grammars as it is imported: 1.2 s in every process that imports jsonschema (each Jupyter
+# server, nbconvert, every pytest process through nbval's nbformat), for a format nothing
+# here uses. Without it jsonschema imports in 0.2 s and simply does not check "iri".
 EXTRAS := .[lab,course,dev,fast]
+OVERRIDES := $(VENV)/uv-overrides.txt
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	printf 'rfc3987-syntax ; sys_platform == "never"\n' > $(OVERRIDES)
 	( $(BIN)/python -m pip install --quiet uv \
-	  && $(BIN)/uv pip install --quiet --compile-bytecode --python $(BIN)/python -e '$(EXTRAS)' ) \
+	  && $(BIN)/uv pip install --quiet --compile-bytecode --python $(BIN)/python \
+	       --override $(OVERRIDES) -e '$(EXTRAS)' ) \
 	|| { $(BIN)/python -m pip install --quiet --upgrade pip \
-	     && $(BIN)/python -m pip install --quiet -e '$(EXTRAS)'; }
+	     && $(BIN)/python -m pip install --quiet -e '$(EXTRAS)' \
+	     && $(BIN)/python -m pip uninstall --quiet -y rfc3987-syntax; }
 	touch $(STAMP)
 
 venv: $(STAMP)
