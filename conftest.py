@@ -90,23 +90,10 @@ os.replace(folder + "/rc.tmp", folder + "/rc")
 #: them instead of each compiling them at once on a clean clone. Two processes side by side
 #: (the FK, Jacobian and conversion kernels; the IK loop), one per core: about half the
 #: time of one after the other (numba compiles one function at a time in a process)
-WARM_KERNELS = ("""
-import numpy as np
-import kinlib as kl
-from kinlib.robots import puma560
-robot, rng = puma560(), np.random.default_rng(0)
-q = rng.uniform(-1, 1, (5000, 6))
-robot.fk(q[0]), robot.jacobian(q[0]), robot.fk(q), robot.jacobian(q), robot.link_poses(q)
-kl.quat_from_matrix(kl.matrix_from_quat(rng.normal(size=(5000, 4))))
-kl.is_rotation(kl.matrix_from_quat(rng.normal(size=(5000, 4))))
-""", """
-import numpy as np
-from kinlib.robots import puma560
-robot, rng = puma560(), np.random.default_rng(0)
-q = rng.uniform(-1, 1, (3, 6))
-robot.ik(robot.fk(q + 0.1), q0=q)
-robot.ik(robot.fk(q[0] + 0.1))
-""")
+WARM_KERNELS = (
+    'import kinlib; kinlib.prepare_kernels(["fk", "jacobian", "link_poses", "conversions"])',
+    'import kinlib; kinlib.prepare_kernels(["ik"])',
+)
 
 
 def pytest_configure(config):

@@ -7,6 +7,7 @@ Conventions (frames, quaternion order, Euler sequences, ...) are stated once in
 
 from .errors import KinlibError, URDFError
 from .kinematics.ik import IKResult, dls_step, pose_error
+from .kinematics.kernels import prepare_kernels
 from .kinematics.planar import Planar2RIK, planar_2r_fk, planar_2r_ik, planar_2r_jacobian
 from .kinematics.poe import body_jacobian, poe_fk, screw_axes, space_jacobian
 from .kinematics.robot import Robot, load_urdf
@@ -102,6 +103,7 @@ __all__ = [
     "hat_se3",
     "log_se3",
     "poe_fk",
+    "prepare_kernels",
     "screw_axes",
     "space_jacobian",
     "vee_se3",

@@ -6,19 +6,22 @@ by arithmetic — quaternion → matrix must write nine interleaved outputs, whi
 only do with strided passes or a transpose — and there a numba kernel is used when
 numba is installed (``pip install 'kinlib[fast]'``, which ``make`` does) and the
 environment variable ``KINLIB_NUMBA`` is not ``0``. Kernels are only used for batches of
-at least :data:`MIN_BATCH`, so small calls never pay numba's import or compile time. The
-tests compare both paths.
+at least :data:`MIN_BATCH`, so small calls never pay numba's import or compile time, and
+the first such call does not wait for it either: it takes the numpy path while the kernel
+is compiled (or loaded from numba's cache) in the background (:mod:`kinlib._background`).
+The tests compare both paths.
 """
 
 from __future__ import annotations
 
-import functools
 import os
 from types import SimpleNamespace
 
 import numpy as np
 
-__all__ = ["MIN_BATCH", "kernels", "numba_disabled"]
+from ._background import KernelsUnavailable, ready, warn_once
+
+__all__ = ["MIN_BATCH", "kernel", "kernels", "numba_disabled"]
 
 #: Smallest batch for which a compiled kernel is used.
 MIN_BATCH = 2048
@@ -107,21 +110,56 @@ def numba_disabled() -> bool:
     return os.environ.get("KINLIB_NUMBA", "1") == "0"
 
 
-@functools.cache
+_built: list = []  # [the kernels' namespace, None (numba missing) or the failure]
+
+
+def _kernels():
+    """The kernels' namespace; None when numba is missing; else
+    :class:`~kinlib._background.KernelsUnavailable` naming why they cannot be built."""
+    if not _built:
+        try:
+            import numba
+        except ImportError:
+            _built.append(None)
+        else:
+            try:
+                _built.append(_build(numba.njit))
+            except Exception as exc:  # a numba these kernels do not support
+                _built.append(exc)
+    if isinstance(_built[0], Exception):
+        exc = _built[0]
+        raise KernelsUnavailable(
+            f"kinlib: the compiled conversions could not be built, so the numpy path is used "
+            f"({type(exc).__name__}: {exc}); set KINLIB_NUMBA=0 to skip them")
+    return _built[0]
+
+
 def kernels():
-    """The compiled kernels, or ``None`` when numba is missing or disabled."""
+    """The compiled kernels (numba imported now), or ``None`` when numba is missing or
+    disabled; a failure to build them is reported once, as a RuntimeWarning."""
     if numba_disabled():
         return None
     try:
-        import numba
-    except ImportError:
+        return _kernels()
+    except KernelsUnavailable as exc:
+        warn_once(str(exc))
         return None
-    try:
-        return _build(numba.njit)
-    except Exception as exc:  # a numba these kernels do not support
-        import warnings
 
-        warnings.warn(f"kinlib: the compiled conversions could not be built, so the numpy "
-                      f"path is used ({type(exc).__name__}: {exc}); set KINLIB_NUMBA=0 to "
-                      "skip them", RuntimeWarning, stacklevel=2)
+
+def kernel(name: str, example: tuple, *, wait: bool = False):
+    """The compiled conversion ``name`` once it is ready, else None: the caller uses its
+    numpy path while it is compiled (or loaded from numba's cache) in the background (see
+    :mod:`kinlib._background`). ``example``: the call's arguments with an empty batch;
+    ``wait=True`` waits for the kernel instead."""
+    if numba_disabled():
         return None
+
+    def prepare():
+        built = _kernels()
+        if built is None:
+            return None
+        fn = getattr(built, name)
+        fn(*example)
+        return fn
+
+    return ready(f"_accel.{name}", prepare, wait=wait)

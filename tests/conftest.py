@@ -1,9 +1,20 @@
 """Shared fixtures: the visualizer tests' visualizers and the browser tests' Chromium (the
-course site: ../conftest.py)."""
+course site: ../conftest.py); the compiled kernels, ready before the first test."""
 
 import uuid
 
 import pytest
+
+
+@pytest.fixture(scope="session", autouse=True)
+def compiled_kernels():
+    """Every test in this process meets kinlib's compiled kernels ready (numba installed),
+    as every call after a student's first few seconds does: a test that compares the
+    compiled path with the numpy one (``compiled=False``) then really compares the two,
+    instead of racing the background preparation (tests/test_background.py tests that)."""
+    import kinlib
+
+    return kinlib.prepare_kernels()
 
 STL = """solid t
 facet normal 0 0 1

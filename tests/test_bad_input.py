@@ -165,7 +165,7 @@ NOT_ARRAY_FUNCTIONS = {"load_urdf", "add_angular_velocities", "singular_values",
                        "manipulability", "condition_number", "velocity_ellipsoid",
                        "is_near_singular", "planar_2r_cspace", "astar", "cost_to_go",
                        "dls_step", "screw_axes", "poe_fk", "space_jacobian",
-                       "body_jacobian"}
+                       "body_jacobian", "prepare_kernels"}
 
 # None means "the default" here
 NONE_OK = {("transform", "R"), ("transform", "p"), ("exp_se3", "theta")}

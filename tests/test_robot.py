@@ -399,9 +399,11 @@ def test_compiled_sincos_matches_libm():
 
 
 def test_numba_is_optional_and_lazy():
-    """Building robots never imports numba; FK imports it on first use unless disabled."""
-    code = ("import sys, numpy as np, kinlib.robots as r; p = r.puma560(); "
+    """Building robots never imports numba; the first FK starts preparing its kernel (in
+    the background thread, which imports numba) unless disabled."""
+    code = ("import sys, threading, numpy as np, kinlib.robots as r; p = r.puma560(); "
             "assert 'numba' not in sys.modules; T = p.fk([0.1] * 6); "
+            "[t.join() for t in threading.enumerate() if t.name == 'kinlib-kernels']; "
             "print('numba' in sys.modules, np.round(T[0, 3], 12))")
     results = {}
     for flag in ("0", "1"):

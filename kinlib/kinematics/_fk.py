@@ -21,6 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .._accel import numba_disabled
+from .._background import KernelsUnavailable, ready, warn_once
 
 __all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian", "in_threads"]
 
@@ -140,36 +141,82 @@ def _numpy(table: FKTable, q: np.ndarray, sel: np.ndarray, out: np.ndarray) -> N
         np.matmul(out[:, table.parent[j]], L[:, k], out=out[:, j + 1])
 
 
-def _load_kernels(module: str):
-    """``kinlib.<module>`` (numba kernels), or None: numba is missing, or building the
-    kernels failed in any way (a numba or Python the kernels do not support: on Python 3.10
-    ``CodeType.replace`` has no ``co_qualname``). A failure other than a missing numba is
-    reported once, as a RuntimeWarning naming it; the numpy path is then used."""
+class _Missing:
+    """numba is not installed: the numpy path, silently."""
+
+
+_modules: dict[str, object] = {}
+
+
+def _import_kernels(module: str):
+    """``kinlib.kinematics.<module>`` (numba kernels); None when numba is missing; else
+    :class:`~kinlib._background.KernelsUnavailable` if building the kernels failed in any
+    way (a numba or Python the kernels do not support: on Python 3.10
+    ``CodeType.replace`` has no ``co_qualname``), naming the reason. Tried once."""
     import importlib
 
-    try:
-        return importlib.import_module(f"{__package__}.{module}")
-    except ImportError as exc:
-        if exc.name == "numba":
-            return None
-        reason = exc
-    except Exception as exc:  # numba there, but the kernels cannot be built with it
-        reason = exc
-    import warnings
+    if module not in _modules:
+        try:
+            _modules[module] = importlib.import_module(f"{__package__}.{module}")
+        except ImportError as exc:
+            _modules[module] = _Missing if exc.name == "numba" else exc
+        except Exception as exc:  # numba there, but the kernels cannot be built with it
+            _modules[module] = exc
+    found = _modules[module]
+    if found is _Missing:
+        return None
+    if isinstance(found, BaseException):
+        raise KernelsUnavailable(
+            f"kinlib: the compiled kernels ({__package__}.{module}) could not be built, so "
+            f"the numpy path is used ({type(found).__name__}: {found}); set KINLIB_NUMBA=0 "
+            "to skip them")
+    return found
 
-    warnings.warn(f"kinlib: the compiled kernels ({__package__}.{module}) could not be built, so "
-                  f"the numpy path is used ({type(reason).__name__}: {reason}); set "
-                  "KINLIB_NUMBA=0 to skip them", RuntimeWarning, stacklevel=3)
-    return None
 
-
-@functools.cache
-def _compiled():
-    """The numba kernels module, or None when numba is missing, KINLIB_NUMBA=0, or the
-    kernels cannot be built here (see :func:`_load_kernels`)."""
+def _load_kernels(module: str):
+    """``kinlib.kinematics.<module>`` imported now (not in the background), or None; a
+    failure other than a missing numba is reported once, as a RuntimeWarning."""
     if numba_disabled():
         return None
+    try:
+        return _import_kernels(module)
+    except KernelsUnavailable as exc:
+        warn_once(str(exc))
+        return None
+
+
+def _compiled():
+    """The numba kernels module, or None when numba is missing, KINLIB_NUMBA=0, or the
+    kernels cannot be built here (see :func:`_import_kernels`). Imported now; the callers
+    on the hot paths use :func:`kernel` instead, which never waits for numba."""
     return _load_kernels("_fk_numba")
+
+
+#: from this many configurations, a call whose kernel is still being prepared waits for it
+#: (the numpy path would take longer than the compile: bench/README.md, "the first call")
+WAIT_MIN = 100_000
+
+
+def kernel(name: str, example: tuple, *, module: str = "_fk_numba", wait: bool = False):
+    """The compiled kernel ``<module>.<name>`` once it is ready, else None (see
+    :mod:`kinlib._background`: it is then prepared in the background, and the caller takes
+    its numpy path). ``example``: the call's arguments with an empty batch (the same types:
+    numba compiles the kernel for them). None for good when numba is missing or
+    ``KINLIB_NUMBA=0``."""
+    if numba_disabled():
+        return None
+
+    def prepare():
+        if module != "_fk_numba" and _import_kernels("_fk_numba") is None:
+            return None  # (the IK loop calls the FK kernels' helpers)
+        kernels = _import_kernels(module)
+        if kernels is None:
+            return None
+        fn = getattr(kernels, name)
+        fn(*example)
+        return fn
+
+    return ready(f"{module}.{name}", prepare, wait=wait)
 
 
 PARALLEL_MIN = 4096  # below this, starting the threads costs more than it saves
@@ -272,32 +319,44 @@ def _chain_numpy(chain: ChainTable, q: np.ndarray, dof: int | None = None):
 
 
 def writable(a: np.ndarray) -> np.ndarray:
-    """``a``, or a copy of it if it is read-only (``np.broadcast_to``, a frozen array): numba
-    types a read-only array apart, and would compile every kernel a second time for it."""
-    return a if a.flags.writeable else a.copy()
+    """``a``, or a C-ordered copy of it if it is read-only (``np.broadcast_to``, a frozen
+    array) or not C-contiguous (a transpose): numba types those apart, and would compile
+    every kernel a second time for them."""
+    return a if a.flags.writeable and a.flags.c_contiguous else np.array(a, order="C")
+
+
+def _wait(compiled: bool | None, n: int) -> bool:
+    """Whether a call with ``n`` configurations waits for its kernel rather than take the
+    numpy path while the kernel is prepared: always with ``compiled=True``."""
+    return bool(compiled) or n >= WAIT_MIN
 
 
 def run_chain(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None):
-    """Pose (N, 4, 4) at the end of the chain."""
-    kernels = _compiled() if compiled is not False else None
-    if kernels is not None:
+    """Pose (N, 4, 4) at the end of the chain. ``compiled``: None, the compiled kernel if
+    it is ready (see :func:`kernel`); True, the compiled kernel (waiting for it; numpy
+    only without numba); False, the numpy path."""
+    if compiled is not False:
         q = writable(q)
-        if q.shape[0] < PARALLEL_MIN:  # (the common case: no slicing, no threads)
-            return kernels.chain(q, chain.ints, chain.floats, chain.D)
-        return in_threads(kernels.chain, q.shape[0],
-                          lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D))
+        n, args = q.shape[0], (chain.ints, chain.floats, chain.D)
+        fn = kernel("chain", (q[:0], *args), wait=_wait(compiled, n))
+        if fn is not None:
+            if n < PARALLEL_MIN:  # (the common case: no slicing, no threads)
+                return fn(q, *args)
+            return in_threads(fn, n, lambda a, b: (q[a:b], *args))
     return _chain_numpy(chain, q)
 
 
 def run_chain_jacobian(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None):
-    """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the chain."""
-    kernels = _compiled() if compiled is not False else None
-    if kernels is not None:
+    """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the chain (``compiled``: as for
+    :func:`run_chain`)."""
+    if compiled is not False:
         q = writable(q)
-        if q.shape[0] < PARALLEL_MIN:
-            return kernels.chain_jacobian(q, chain.ints, chain.floats, chain.D, q.shape[1])
-        return in_threads(kernels.chain_jacobian, q.shape[0],
-                          lambda a, b: (q[a:b], chain.ints, chain.floats, chain.D, q.shape[1]))
+        n, args = q.shape[0], (chain.ints, chain.floats, chain.D, q.shape[1])
+        fn = kernel("chain_jacobian", (q[:0], *args), wait=_wait(compiled, n))
+        if fn is not None:
+            if n < PARALLEL_MIN:
+                return fn(q, *args)
+            return in_threads(fn, n, lambda a, b: (q[a:b], *args))
     return _chain_numpy(chain, q, q.shape[1])
 
 
@@ -305,12 +364,15 @@ def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None
     """Frames (N, 1 + n_joints, 4, 4) for q (N, dof); only frames of ``sel`` are filled.
 
     Frame 0 is the root link (identity); frame ``j + 1`` is joint ``j``'s child link.
-    ``compiled=None`` uses the numba kernel when numba is available (``KINLIB_NUMBA=0``
-    turns it off); numba is imported on the first call, not with kinlib.
+    ``compiled``: as for :func:`run_chain` (``KINLIB_NUMBA=0`` turns the kernels off);
+    numba is imported when a kernel is first asked for, not with kinlib.
     """
-    kernels = _compiled() if compiled is not False else None
-    if kernels is not None:
-        return kernels.tree(writable(q), sel, table.ints, table.floats, table.M)
+    if compiled is not False:
+        q = writable(q)
+        args = (sel, table.ints, table.floats, table.M)
+        fn = kernel("tree", (q[:0], *args), wait=_wait(compiled, q.shape[0]))
+        if fn is not None:
+            return fn(q, *args)
     out = np.empty((q.shape[0], table.n + 1, 4, 4))
     out[:, 0] = np.eye(4)
     _numpy(table, q, sel, out)

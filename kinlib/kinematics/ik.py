@@ -23,7 +23,6 @@ simply ends with ``success=False`` after its bounded number of steps.
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -165,6 +164,8 @@ def _rank_starts(robot, link, T_t, starts, position_only, keep_first):
     starts, order by initial pose error (metres + radians), best first."""
     n, attempts, dof = starts.shape
     k = min(attempts, RANKED)
+    if k == 1:
+        return np.ascontiguousarray(starts)  # one start: nothing to order
     head = starts[:, :k]
     T = robot.fk(head.reshape(-1, dof), link=link).reshape(n, k, 4, 4)
     err = np.linalg.norm(T[..., :3, 3] - T_t[:, None, :3, 3], axis=-1)
@@ -181,7 +182,10 @@ def _rank_starts(robot, link, T_t, starts, position_only, keep_first):
 def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
              tol_position=IK_POSITION_TOL, tol_rotation=IK_ROTATION_TOL, max_iterations=30,
              restarts=100, seed=0, compiled=None):
-    """See :meth:`kinlib.Robot.ik`. ``compiled=False`` forces the numpy reference."""
+    """See :meth:`kinlib.Robot.ik`. ``compiled``: None, the compiled loop if it is ready
+    (else the numpy reference, while the loop is prepared in the background: see
+    :func:`kinlib.kinematics._fk.kernel`); True, the compiled loop (waiting for it; numpy
+    only without numba); False, the numpy reference."""
     T_t = _targets(T_target, position_only)
     batch = T_t.shape[:-2]
     T_t = _fk.writable(np.ascontiguousarray(T_t.reshape(-1, 4, 4)))
@@ -193,16 +197,21 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
     limits = _Limits(robot)
     starts = _starts(robot, limits, q0, batch, n, attempts, seed)
     starts = _rank_starts(robot, link, T_t, starts, position_only, q0 is not None)
-    kernels = _compiled_ik() if compiled is not False else None
-    if kernels is not None:
+    fn = None
+    if compiled is not False:
         chain = robot.chain_table(link)
         out = (np.empty((n, robot.dof)), np.empty(n, dtype=bool), np.empty(n), np.empty(n),
                np.empty(n, dtype=np.int64))  # q, success, errors, iterations: filled by ik_lm
-        in_threads(kernels.ik_lm, n,
-                   lambda a, b: (T_t[a:b], starts[a:b], limits.lo, limits.hi, limits.wrap,
-                                 chain.ints, chain.floats, chain.D, position_only, tol_p,
-                                 tol_r, max_iterations, *(o[a:b] for o in out)),
-                   min_batch=8)
+
+        def args(a, b):
+            return (T_t[a:b], starts[a:b], limits.lo, limits.hi, limits.wrap, chain.ints,
+                    chain.floats, chain.D, position_only, tol_p, tol_r, max_iterations,
+                    *(o[a:b] for o in out))
+
+        fn = _fk.kernel("ik_lm", args(0, 0), module="_ik_numba",
+                        wait=bool(compiled) or n >= WAIT_MIN)
+    if fn is not None:
+        in_threads(fn, n, args, min_batch=8)
         q, success, pe, re, iters = out
     else:
         q, success, pe, re, iters = _solve_numpy(robot, link, T_t, starts, limits,
@@ -216,15 +225,17 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
                     shape(iters))
 
 
-@functools.cache
 def _compiled_ik():
-    """The compiled IK loop, or None (as for the FK kernels:
+    """The compiled IK loop's module imported now, or None (as for the FK kernels:
     :func:`kinlib.kinematics._fk._compiled`)."""
-    from ._fk import _compiled, _load_kernels
-
-    if _compiled() is None:
+    if _fk._compiled() is None:
         return None
-    return _load_kernels("_ik_numba")
+    return _fk._load_kernels("_ik_numba")
+
+
+#: from this many targets, a solve whose compiled loop is still being prepared waits for it
+#: (the numpy path would take longer than the compile: bench/README.md, "the first call")
+WAIT_MIN = 256
 
 
 #: the numpy path's attempts side by side (see _solve_numpy). Numpy's cost per call, not the

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._accel import MIN_BATCH, kernels
+from .._accel import MIN_BATCH, kernel
 from .._validate import as_array, as_unit_vectors, broadcast, fmt_index, py_scalar, unit_rows
 from ..errors import KinlibError
 from .rotations import check_rotation
@@ -198,12 +198,14 @@ def matrix_from_quat(q):
     a = _quat(q)
     if a.size and np.abs(a).max() > 1e150:  # |q|² would overflow: scale each row first
         a = unit_rows(a)[0]
-    k = kernels() if a.size >= 4 * MIN_BATCH else None
-    if k is None:
+    if a.size < 4 * MIN_BATCH:
         return _matrix_from_quat_numpy(a)
     flat = np.ascontiguousarray(a.reshape(-1, 4))
     out = np.empty((len(flat), 3, 3))
-    if k.matrix_from_quat(flat, out) >= 0:
+    fn = kernel("matrix_from_quat", (flat[:0], out[:0]))
+    if fn is None:
+        return _matrix_from_quat_numpy(a)
+    if fn(flat, out) >= 0:
         _nonzero(a, "q")
     return out.reshape(a.shape[:-1] + (3, 3))
 
@@ -245,12 +247,14 @@ def quat_from_matrix(R):
     array([0., 0., 0., 1.])
     """
     m = check_rotation(R)
-    k = kernels() if m.size >= 9 * MIN_BATCH else None
-    if k is None:
+    if m.size < 9 * MIN_BATCH:
         return _quat_from_matrix_numpy(m)
     flat = np.ascontiguousarray(m.reshape(-1, 3, 3))
     out = np.empty((len(flat), 4))
-    k.quat_from_matrix(flat, out)
+    fn = kernel("quat_from_matrix", (flat[:0], out[:0]))
+    if fn is None:
+        return _quat_from_matrix_numpy(m)
+    fn(flat, out)
     return out.reshape(m.shape[:-2] + (4,))
 
 

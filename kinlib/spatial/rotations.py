@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._accel import MIN_BATCH, kernels
+from .._accel import MIN_BATCH, kernel
 from .._validate import as_array, as_tol, fmt_index, is_symbolic, py_scalar
 from ..conventions import ROTATION_TOL, SKEW_TOL
 from ..errors import KinlibError
@@ -155,12 +155,13 @@ def rotation_errors(R) -> tuple[np.ndarray, np.ndarray]:
     The orthonormality error is ``max |RᵀR − I|`` over the nine entries.
     """
     a = as_array(R, "R", (3, 3))
-    k = kernels() if a.size >= 9 * MIN_BATCH else None
-    if k is not None:
+    if a.size >= 9 * MIN_BATCH:
         flat = np.ascontiguousarray(a.reshape(-1, 3, 3))
         err, det = np.empty(len(flat)), np.empty(len(flat))
-        k.rotation_errors(flat, err, det)
-        return err.reshape(a.shape[:-2]), det.reshape(a.shape[:-2])
+        fn = kernel("rotation_errors", (flat[:0], err[:0], det[:0]))
+        if fn is not None:
+            fn(flat, err, det)
+            return err.reshape(a.shape[:-2]), det.reshape(a.shape[:-2])
     return _rotation_errors_numpy(a)
 
 
