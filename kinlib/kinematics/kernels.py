@@ -55,8 +55,10 @@ def prepare_kernels(names=None, *, wait: bool = True) -> dict[str, bool]:
     ['fk']
     """
     chosen = list(KERNELS) if names is None else names
-    if isinstance(chosen, str) or not isinstance(chosen, Iterable) or not all(
-            isinstance(n, str) and n in KERNELS for n in (chosen := list(chosen))):
+    if not isinstance(chosen, str) and isinstance(chosen, Iterable):
+        chosen = list(chosen)
+    if not isinstance(chosen, list) or not all(isinstance(n, str) and n in KERNELS
+                                               for n in chosen):
         raise KinlibError(f"prepare_kernels: expected a list of names from {list(KERNELS)}, "
                           f"got {names!r}")
     if numba_disabled():
