@@ -123,6 +123,35 @@ def close(a, b, atol: float) -> bool:
     return a.shape == b.shape and bool(np.all(np.abs(a - b) <= atol * (1.0 + np.abs(b))))
 
 
+_NOT_APPLICABLE = object()  # a mistake's model that raised on the case
+
+
+def _model(m: Mistake, args: tuple):
+    try:
+        return m.model(*args)
+    except Exception:  # a model that does not apply to this case
+        return _NOT_APPLICABLE
+
+
+def _frozen(value):
+    """``value`` with its arrays read-only (they are shared by every answer judged)."""
+    if isinstance(value, np.ndarray):
+        value.setflags(write=False)
+    elif isinstance(value, list | tuple):
+        for v in value:
+            _frozen(v)
+    return value
+
+
+def _once(memo: dict | None, key, compute):
+    """``compute()``, or what it gave before for this case (``memo``: None, no memo)."""
+    if memo is None:
+        return compute()
+    if key not in memo:
+        memo[key] = _frozen(compute())
+    return memo[key]
+
+
 @dataclass
 class Rule:
     """How one returned value is judged: against ``reference(*args)`` and ``accept``, then
@@ -136,20 +165,25 @@ class Rule:
     what: str = "an array"  # how the expected value is named in a shape message
     returned: bool = True  # the value a function returned (else: a value written down)
 
-    def verdict(self, args: tuple, got) -> Verdict:
+    def verdict(self, args: tuple, got, memo: dict | None = None) -> Verdict:
+        """``got`` judged for the case ``args``. ``memo``: a dict kept with the case (the
+        grader's, shared by every submission judged on it): what does not depend on the
+        answer (the reference's answer, the accepted ones, each mistake's) is computed
+        once per case instead of once per answer, and kept read-only."""
         if self.judge is not None:
             return self.judge(args, got)
-        expected = np.asarray(self.reference(*args), dtype=float)
+        expected = _once(memo, "expected",
+                         lambda: np.asarray(self.reference(*args), dtype=float))
         a, bad = as_numeric(got, expected.shape, self.what, returned=self.returned)
         if a is None:
             return Verdict(bad.ok, bad.key, bad.message, expected)
-        right = [expected] + (list(self.accept(*args)) if self.accept else [])
+        right = [expected] + (_once(memo, "accept", lambda: list(self.accept(*args)))
+                              if self.accept else [])
         if any(close(a, r, self.atol) for r in right):
             return RIGHT
-        for m in self.mistakes:
-            try:
-                wrong = m.model(*args)
-            except Exception:  # a model that does not apply to this case
+        for k, m in enumerate(self.mistakes):
+            wrong = _once(memo, ("mistake", k), lambda m=m: _model(m, args))
+            if wrong is _NOT_APPLICABLE:
                 continue
             if close(a, wrong, self.atol) and not close(wrong, expected, self.atol):
                 return Verdict(False, m.key, m.message, expected)

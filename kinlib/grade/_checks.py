@@ -9,7 +9,9 @@ exercises: :mod:`kinlib.check`).
 
 from __future__ import annotations
 
+import threading
 import zlib
+from collections import OrderedDict
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -17,7 +19,8 @@ import numpy as np
 
 from ..check import RIGHT, Mistake, Rule, Verdict, as_numeric, close, fmt
 
-__all__ = ["Mistake", "Verdict", "Check", "Assignment", "RIGHT", "as_numeric", "close", "fmt"]
+__all__ = ["Mistake", "Verdict", "Check", "Assignment", "RIGHT", "as_numeric", "close", "fmt",
+           "shared_cases"]
 
 
 @dataclass
@@ -51,8 +54,8 @@ class Check:
         rng = np.random.default_rng([seed, zlib.crc32(self.function.encode())])
         return [tuple(c) for c in self.cases(rng)]
 
-    def verdict(self, args: tuple, got) -> Verdict:
-        return self.rule.verdict(args, got)
+    def verdict(self, args: tuple, got, memo: dict | None = None) -> Verdict:
+        return self.rule.verdict(args, got, memo)
 
 
 @dataclass
@@ -66,3 +69,39 @@ class Assignment:
     @property
     def max_score(self) -> float:
         return float(sum(c.points for c in self.checks))
+
+
+#: (assignment, function, seed) → the check's cases and a memo per case, most recent last
+_SHARED: OrderedDict[tuple, tuple[list[tuple], list[dict]]] = OrderedDict()
+_SHARED_MAX = 64
+_shared_lock = threading.Lock()
+
+
+def _read_only(value):
+    if isinstance(value, np.ndarray):
+        value.setflags(write=False)
+    elif isinstance(value, list | tuple):
+        for v in value:
+            _read_only(v)
+
+
+def shared_cases(assignment: str, check: Check, seed: int) -> tuple[list[tuple], list[dict]]:
+    """``check.make_cases(seed)`` made once in this process for every submission judged on
+    them (a class's submissions share the cases of their seed), their arrays read-only, and
+    a memo per case in which the check's rule keeps what does not depend on the answer
+    (the reference's answer, the accepted ones, each mistake's): judging a class then costs
+    one reference and one run of each mistake per case, not one per submission."""
+    key = (assignment, check.function, seed)
+    with _shared_lock:
+        found = _SHARED.get(key)
+        if found is not None:
+            _SHARED.move_to_end(key)
+            return found
+    cases = check.make_cases(seed)
+    _read_only(cases)
+    made = (cases, [{} for _ in cases])
+    with _shared_lock:
+        found = _SHARED.setdefault(key, made)
+        while len(_SHARED) > _SHARED_MAX:
+            _SHARED.popitem(last=False)
+    return found

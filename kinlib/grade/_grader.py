@@ -22,7 +22,7 @@ from pathlib import Path
 
 from ..errors import KinlibError
 from ._bwrap import Sandbox, find_sandbox
-from ._checks import Assignment, Check, Verdict, fmt
+from ._checks import Assignment, Check, Verdict, fmt, shared_cases
 from ._sandbox import BLOCKED, Worker, WorkerDied, WorkerTimeout
 from ._wire import WireError, decode, encode
 
@@ -285,7 +285,7 @@ def _out_of_time(session: _Session) -> str:
             "cells and cases together)")
 
 
-def _judge(check: Check, args: tuple, status: str, payload) -> Verdict:
+def _judge(check: Check, args: tuple, status: str, payload, memo: dict | None = None) -> Verdict:
     if status != "value":
         key = {"error": "raised", "timeout": "timeout", "died": "died",
                "missing": "missing", "not run": "not run"}[status]
@@ -300,20 +300,25 @@ def _judge(check: Check, args: tuple, status: str, payload) -> Verdict:
                 payload = f"{payload}. {hint}"
         return Verdict(False, key, payload)
     try:
-        return check.verdict(args, payload)
+        return check.verdict(args, payload, memo)
     except Exception as exc:  # an odd value must not stop the grading
         return Verdict(False, "unchecked", f"the answer could not be checked: "
                                            f"{type(exc).__name__}: {str(exc)[:200]}")
 
 
-def _is_trivial(check: Check, case) -> bool:
+def _is_trivial(check: Check, case, memo: dict | None = None) -> bool:
+    if memo is not None and "trivial" in memo:
+        return memo["trivial"]
     try:
-        return bool(check.is_trivial(case))
+        trivial = bool(check.is_trivial(case))
     except Exception:  # a reference that fails on a case: judge that case like any other
-        return False
+        trivial = False
+    if memo is not None:
+        memo["trivial"] = trivial
+    return trivial
 
 
-def _summarise(check: Check, cases, results, verdicts) -> dict:
+def _summarise(check: Check, cases, results, verdicts, memos=None) -> dict:
     passed = sum(v.ok for v in verdicts)
     fails = [(c, r, v) for c, r, v in zip(cases, results, verdicts, strict=True) if not v.ok]
     counts = Counter(v.key for _, _, v in fails)
@@ -330,7 +335,8 @@ def _summarise(check: Check, cases, results, verdicts) -> dict:
     total = len(cases)
     credit = passed
     if check.is_trivial is not None:  # right "trivial" answers count only beside right others
-        trivial = [_is_trivial(check, c) for c in cases]
+        trivial = [_is_trivial(check, c, m) for c, m in zip(cases, memos or [None] * total,
+                                                              strict=True)]
         main = [v.ok for v, t in zip(verdicts, trivial, strict=True) if not t]
         easy = sum(v.ok for v, t in zip(verdicts, trivial, strict=True) if t)
         rate = sum(main) / len(main) if main else 1.0
@@ -419,10 +425,11 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
     session = _Session(cells, cell_timeout, memory_mb, sandbox, submission_timeout)
     try:
         for check in spec.checks:
-            cases = check.make_cases(seed)
+            cases, memos = shared_cases(name, check, seed)
             results = _run_check(session, check, cases)
-            verdicts = [_judge(check, c, s, p) for c, (s, p) in zip(cases, results, strict=True)]
-            result["checks"].append(_summarise(check, cases, results, verdicts))
+            verdicts = [_judge(check, c, s, p, m)
+                        for c, (s, p), m in zip(cases, results, memos, strict=True)]
+            result["checks"].append(_summarise(check, cases, results, verdicts, memos))
     finally:
         session.close()
     result["cells"] = [r for _, r in sorted(session.reports.items()) if not r["ok"]]

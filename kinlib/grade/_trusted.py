@@ -17,6 +17,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Callable, Mapping
 
+from ._checks import shared_cases
 from ._grader import _judge, _summarise, load_assignment, not_graded
 from ._wire import WireError, decode, dumps, encode, loads
 from ._worker import _error_text, _where
@@ -54,15 +55,16 @@ def judge_functions(functions: Mapping[str, Callable], assignment: str, *,
     result.update(title=spec.title, cases=f"public (seed {seed})", sandbox=None,
                   warning=TRUSTED)
     for check in spec.checks:
-        cases = check.make_cases(seed)
+        cases, memos = shared_cases(assignment, check, seed)
         fn = functions.get(check.function)
         if fn is None or not callable(fn):
             what = "not defined" if fn is None else f"a {type(fn).__name__}, not a function"
             answers = [("missing", what)] * len(cases)
         else:
             answers = [_answer(fn, c) for c in cases]
-        verdicts = [_judge(check, c, s, p) for c, (s, p) in zip(cases, answers, strict=True)]
-        result["checks"].append(_summarise(check, cases, answers, verdicts))
+        verdicts = [_judge(check, c, s, p, m)
+                    for c, (s, p), m in zip(cases, answers, memos, strict=True)]
+        result["checks"].append(_summarise(check, cases, answers, verdicts, memos))
     result["score"] = round(sum(c["score"] for c in result["checks"]), 2)
     result["graded"] = True
     return result
