@@ -25,6 +25,7 @@ that extra. The page template ships with the package (``kinlib/site/templates``)
 
 from __future__ import annotations
 
+import functools
 import html
 import re
 import shutil
@@ -194,16 +195,24 @@ def _nav(pages: list[PageInfo], here: int) -> str:
     return (f'<nav class="kl-nav">{left}<a href="index.html">Course outline</a>{right}</nav>')
 
 
-def export_page(nb, page: PageInfo, pages: list[PageInfo]) -> str:
-    """The executed notebook ``nb`` as one offline HTML page of the site."""
+@functools.cache
+def _exporter():
+    """nbconvert's HTML exporter with the page template: one per process, so its templates
+    are compiled once for all the pages it writes."""
     HTMLExporter = course_import("nbconvert", "kinlib.site").HTMLExporter
     templates = Path(str(TEMPLATES))
     if not templates.is_dir():
         raise KinlibError(f"kinlib.site: its page template is not a folder on disk "
                           f"({TEMPLATES}): install kinlib from a wheel or a checkout, not a zip")
-    freeze_widgets(nb)
     exporter = HTMLExporter(template_name="lab", extra_template_paths=[str(templates)])
     exporter.template_file = "kinlib_page.html.j2"
+    return exporter
+
+
+def export_page(nb, page: PageInfo, pages: list[PageInfo]) -> str:
+    """The executed notebook ``nb`` as one offline HTML page of the site."""
+    exporter = _exporter()
+    freeze_widgets(nb)
     here = [p.name for p in pages].index(page.name)
     resources = {"metadata": {"name": f"{page.number:02d} · {page.title} — kinlib"},
                  "kinlib": {"mathjax_head": MATHJAX_HEAD, "css": CSS,
