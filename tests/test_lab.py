@@ -19,6 +19,13 @@ count; afterwards the notebook is closed and its kernel shut down. Then:
   the printed ``det E`` equals ``-cos β`` at the new ``β``, and the robot in the viewer
   moves.
 
+The server runs under a hub's base URL (``/user/student/``, as JupyterHub serves a
+student) and the page may reach that server's URLs only: any other request or websocket
+fails the test (``hub_viewer.fenced_page``). On the same server and page, the last test
+runs the viewer checks of tests/hub_viewer.py (two viewers, a slider, a reload, re-running
+the cell, removing the robot from the kernel's side); tests/test_viewer_remote.py runs
+them in Jupyter Notebook 7.
+
 Screenshots of every notebook go to pytest's ``tmp_path``; with
 ``KINLIB_SCREENSHOTS=DIR`` (``make screenshots``), the two the README shows go to ``DIR``.
 The kernels run on kinlib's numpy path (``KINLIB_NUMBA=0``, as for a student without
@@ -49,6 +56,7 @@ from browser_helpers import (
     settled,
     solid_axes,
 )
+from hub_viewer import BASE_URL, MOVED, check_viewers, fenced_page, write_viewer_notebook
 from lab_harness import Lab, marked_processes
 
 from kinlib.check import exercises, results
@@ -82,7 +90,7 @@ def lab(tmp_path_factory, site_feed):
     course site's build (``site_feed``), which starts when the module is done."""
     try:
         server = Lab(NOTEBOOKS, tmp_path_factory.mktemp("lab"), env={"KINLIB_NUMBA": "0"},
-                     save_widget_state=True)
+                     save_widget_state=True, base_url=BASE_URL)
     except BaseException:
         site_feed.done()
         raise
@@ -231,7 +239,6 @@ def check_gimbal_slider(page, out: Path) -> None:
     slider.screenshot(path=str(out / "slider_moved.png"))
 
 
-MOVED = 200  # pixels of a viewer that must change when a joint slider turns the robot
 #: the joint whose slider is dragged: one that carries most of the robot (in 08, joint1
 #: turns only link2's frame, a few hundred pixels at most)
 DRAGGED = {"08_urdf_and_matrix_stack": "joint2", "09_denavit_hartenberg": "joint1"}
@@ -277,11 +284,9 @@ def check_viewer(frame_el, name: str, k: int, out: Path) -> None:
 def lab_page(lab, browser):
     """One page of JupyterLab for the module: each notebook is opened in it through
     JupyterLab (as a student opens the next one) and closed after; ``page.errors`` collects
-    the page's JavaScript errors."""
-    context = browser.new_context(viewport={"width": 1280, "height": 900})
-    page = context.new_page()
-    page.errors = []
-    page.on("pageerror", lambda e: page.errors.append(str(e)))
+    the page's JavaScript errors, ``page.refused`` every request it made outside the
+    server (aborted)."""
+    context, page, page.refused = fenced_page(browser, lab)
     try:
         yield page
     finally:
@@ -329,6 +334,7 @@ def test_notebook_runs_in_jupyterlab(lab, lab_page, name, tmp_path, site_feed):
             check_viewer(frames.nth(k), name, k, tmp_path)
         messages = page.errors[errors_so_far:]
         assert not messages, f"{name}: JavaScript errors in JupyterLab: {messages[:3]}"
+        assert not page.refused, f"{name}: requests outside {lab.base}/: {page.refused[:5]}"
         print(f"{name}: {n_code} cells in {seconds:.1f} s")
     finally:
         page.evaluate(CLOSE_ALL)
@@ -359,3 +365,23 @@ def test_readme_shows_the_screenshots_this_suite_takes():
     for shot in shots:
         with Image.open(NOTEBOOKS.parent / shot) as im:  # the suite's viewport
             assert im.size == (1280, 900), (shot, im.size)
+
+
+def test_the_viewer_works_through_the_server_alone(lab, lab_page, tmp_path):
+    """tests/hub_viewer.py's checks in JupyterLab under the hub's base URL, the page fenced
+    to the server: two viewers, a slider, a reload, re-running the cell, and removing the
+    robot from the kernel's side."""
+    page = lab_page
+    write_viewer_notebook(lab.root)
+    try:
+        open_notebook(lab, page, "viewer", 4)
+        at_load = list(page.errors)
+        run_all(page, "viewer")
+        check_viewers(lab, page, page.refused, tmp_path, at_load, reopen=lambda: page.goto(
+            f"{lab.base}/lab/tree/viewer.ipynb?token={lab.token}"))
+    finally:
+        page.screenshot(path=str(tmp_path / "page.png"))
+        page.evaluate(CLOSE_ALL)
+        session = _session(lab, "viewer")
+        if session is not None:
+            lab.close_session(session["id"])

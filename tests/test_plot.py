@@ -90,6 +90,14 @@ def test_animate_makes_a_player_with_every_frame_and_closes_the_figure():
     assert "<script" in html and set(drawn) == set(range(7))
     assert len(set(re.findall(r"frames\[(\d+)\]", html))) == 7
     assert not plt.fignum_exists(fig.number)
+    # a player that needs no network: no icon font from a CDN (blank buttons offline)
+    assert "font-awesome" not in html and "https://" not in html and 'class="fa' not in html
+    assert html.count('class="kl-icon"') == 9 and "▶" in html and "❚❚" in html
+    from matplotlib import animation  # the control: matplotlib's own player links it
+
+    fig3, ax3 = plt.subplots()
+    raw = animation.FuncAnimation(fig3, lambda k: None, frames=2).to_jshtml()
+    assert "font-awesome" in raw and "https://" in raw
     fig2, _ = plt.subplots()
     with pytest.raises(kl.KinlibError, match="frames"):
         animate(fig2, draw, frames=0)

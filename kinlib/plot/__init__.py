@@ -11,6 +11,7 @@ import numpy as np
 from .._validate import as_array
 from ..errors import KinlibError
 from ..spatial.transforms import check_transform
+from ._player import offline_player
 
 __all__ = ["axes_3d", "plot_frame", "plot_point", "arm_points", "plot_arm", "animate",
            "AXIS_COLORS"]
@@ -104,7 +105,9 @@ def animate(fig, draw, frames, *, interval: float = 150):
 
     ``draw(k)`` updates ``fig`` for frame ``k`` (``frames``: how many, or the frame values
     to pass). The figure is closed afterwards, so the notebook shows the player only.
-    Returns an ``IPython.display.HTML`` (its ``data`` is the page fragment).
+    Returns an ``IPython.display.HTML`` (its ``data`` is the page fragment). The player
+    needs no network: its buttons are Unicode symbols, not matplotlib's Font Awesome icons
+    from a CDN (which a remote lab or an offline laptop cannot reach: blank buttons).
     """
     import matplotlib.pyplot as plt
     from IPython.display import HTML
@@ -121,7 +124,7 @@ def animate(fig, draw, frames, *, interval: float = 150):
     fig.canvas.draw_idle = lambda *args, **kwargs: None
     try:
         anim = animation.FuncAnimation(fig, draw, frames=frames, interval=interval)
-        html = anim.to_jshtml()
+        html = offline_player(anim.to_jshtml())
     finally:
         del fig.canvas.draw_idle
         plt.close(fig)

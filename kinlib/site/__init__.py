@@ -40,6 +40,7 @@ from pathlib import Path
 
 from .._optional import course_import
 from ..errors import KinlibError
+from ..plot._player import offline_player
 from ._widgets import freeze_widgets, with_viewer
 
 __all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "read_executed",
@@ -226,24 +227,15 @@ def export_page(nb, page: PageInfo, pages: list[PageInfo]) -> str:
     return body
 
 
-#: matplotlib's to_jshtml player draws its buttons with Font Awesome from a CDN
-_FONT_AWESOME = re.compile(r'<link\b[^>]*font-awesome[^>]*>')
-_ICONS = {"fa-minus": "−", "fa-fast-backward": "⇤", "fa-step-backward": "◁",
-          "fa-play fa-flip-horizontal": "◀", "fa-pause": "❚❚", "fa-play": "▶",
-          "fa-step-forward": "▷", "fa-fast-forward": "⇥", "fa-plus": "+"}
-
-
 def offline_players(page: str) -> str:
-    """``page`` with matplotlib animation players that need no icon font: the Font Awesome
-    stylesheet link is dropped and each button icon becomes a Unicode symbol.
+    """``page`` with matplotlib animation players that need no icon font (the players
+    ``kinlib.plot.animate`` makes are so already; this catches any other): see
+    :func:`kinlib.plot._player.offline_player`.
 
     >>> offline_players('<button title="Play"><i class="fa fa-play"></i></button>')
     '<button title="Play"><span class="kl-icon">▶</span></button>'
     """
-    page = _FONT_AWESOME.sub("", page)
-    return re.sub(r'<i class="fa ((?:fa-[a-z-]+ ?)+)"></i>',
-                  lambda m: f'<span class="kl-icon">{_ICONS.get(m.group(1).strip(), "?")}</span>',
-                  page)
+    return offline_player(page)
 
 
 def _error_output(cell) -> dict | None:
