@@ -95,7 +95,7 @@ def test_animate_makes_a_player_with_every_frame_and_closes_the_figure():
     assert html.count('class="kl-icon"') == 9 and "▶" in html and "❚❚" in html
     from matplotlib import animation  # the control: matplotlib's own player links it
 
-    fig3, ax3 = plt.subplots()
+    fig3 = plt.figure()
     raw = animation.FuncAnimation(fig3, lambda k: None, frames=2).to_jshtml()
     assert "font-awesome" in raw and "https://" in raw
     fig2, _ = plt.subplots()
