@@ -325,10 +325,11 @@ def writable(a: np.ndarray) -> np.ndarray:
     return a if a.flags.writeable and a.flags.c_contiguous else np.array(a, order="C")
 
 
-def _wait(compiled: bool | None, n: int) -> bool:
-    """Whether a call with ``n`` configurations waits for its kernel rather than take the
-    numpy path while the kernel is prepared: always with ``compiled=True``."""
-    return bool(compiled) or n >= WAIT_MIN
+def wait_for_kernel(compiled: bool | None, n: int, least: int = WAIT_MIN) -> bool:
+    """Whether a call with a batch of ``n`` (from ``least`` up) waits for its kernel
+    rather than take the numpy path while the kernel is prepared: always with
+    ``compiled=True``."""
+    return bool(compiled) or n >= least
 
 
 def run_chain(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None):
@@ -338,7 +339,7 @@ def run_chain(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None)
     if compiled is not False:
         q = writable(q)
         n, args = q.shape[0], (chain.ints, chain.floats, chain.D)
-        fn = kernel("chain", (q[:0], *args), wait=_wait(compiled, n))
+        fn = kernel("chain", (q[:0], *args), wait=wait_for_kernel(compiled, n))
         if fn is not None:
             if n < PARALLEL_MIN:  # (the common case: no slicing, no threads)
                 return fn(q, *args)
@@ -352,7 +353,7 @@ def run_chain_jacobian(chain: ChainTable, q: np.ndarray, *, compiled: bool | Non
     if compiled is not False:
         q = writable(q)
         n, args = q.shape[0], (chain.ints, chain.floats, chain.D, q.shape[1])
-        fn = kernel("chain_jacobian", (q[:0], *args), wait=_wait(compiled, n))
+        fn = kernel("chain_jacobian", (q[:0], *args), wait=wait_for_kernel(compiled, n))
         if fn is not None:
             if n < PARALLEL_MIN:
                 return fn(q, *args)
@@ -370,7 +371,7 @@ def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None
     if compiled is not False:
         q = writable(q)
         args = (sel, table.ints, table.floats, table.M)
-        fn = kernel("tree", (q[:0], *args), wait=_wait(compiled, q.shape[0]))
+        fn = kernel("tree", (q[:0], *args), wait=wait_for_kernel(compiled, q.shape[0]))
         if fn is not None:
             return fn(q, *args)
     out = np.empty((q.shape[0], table.n + 1, 4, 4))

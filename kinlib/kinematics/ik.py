@@ -209,7 +209,7 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
                     *(o[a:b] for o in out))
 
         fn = _fk.kernel("ik_lm", args(0, 0), module="_ik_numba",
-                        wait=bool(compiled) or n >= WAIT_MIN)
+                        wait=_fk.wait_for_kernel(compiled, n, WAIT_MIN))
     if fn is not None:
         in_threads(fn, n, args, min_batch=8)
         q, success, pe, re, iters = out
