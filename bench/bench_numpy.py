@@ -28,27 +28,28 @@ import contextlib
 import numpy as np
 from timing import best_time  # bench/timing.py (the script's folder is on sys.path)
 
-from kinlib import transform
-from kinlib.kinematics import _fk, ik
+from kinlib import prepare_kernels, transform
+from kinlib.kinematics import _fk
 from kinlib.robots import puma560
 
 
 @contextlib.contextmanager
 def numpy_path():
-    """kinlib's compiled kernels switched off (as with KINLIB_NUMBA=0) inside the block."""
-    compiled, compiled_ik = _fk._compiled, ik._compiled_ik
-    _fk._compiled = ik._compiled_ik = lambda: None
+    """kinlib's compiled kernels switched off (as with KINLIB_NUMBA=0) inside the block:
+    no kernel is ever ready (FK, Jacobian and the IK loop all ask ``_fk.kernel``)."""
+    kernel = _fk.kernel
+    _fk.kernel = lambda *args, **kwargs: None
     try:
         yield
     finally:
-        _fk._compiled, ik._compiled_ik = compiled, compiled_ik
+        _fk.kernel = kernel
 
 
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=5)
     args = ap.parse_args(argv)
-    if _fk._compiled() is None:
+    if not all(prepare_kernels(["fk", "jacobian", "ik"]).values()):  # compiled, or loaded
         raise SystemExit("numba is not installed (or KINLIB_NUMBA=0): nothing to compare")
     robot = puma560()
     q = np.array([0.3, -0.6, 1.2, 0.2, 0.5, -0.4])
