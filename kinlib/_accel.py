@@ -14,12 +14,13 @@ The tests compare both paths.
 
 from __future__ import annotations
 
+import functools
 import os
 from types import SimpleNamespace
 
 import numpy as np
 
-from ._background import KernelsUnavailable, ready, warn_once
+from ._background import KernelsUnavailable, peek, ready, warn_once
 
 __all__ = ["MIN_BATCH", "kernel", "kernels", "numba_disabled"]
 
@@ -105,8 +106,10 @@ def _build(njit):
     )
 
 
+@functools.cache
 def numba_disabled() -> bool:
-    """True when the environment says ``KINLIB_NUMBA=0``: use the numpy paths only."""
+    """True when the environment says ``KINLIB_NUMBA=0``: use the numpy paths only (read
+    once, when a kernel is first asked for)."""
     return os.environ.get("KINLIB_NUMBA", "1") == "0"
 
 
@@ -146,20 +149,22 @@ def kernels():
         return None
 
 
-def kernel(name: str, example: tuple, *, wait: bool = False):
+def kernel(name: str, example, *, wait: bool = False):
     """The compiled conversion ``name`` once it is ready, else None: the caller uses its
     numpy path while it is compiled (or loaded from numba's cache) in the background (see
-    :mod:`kinlib._background`). ``example``: the call's arguments with an empty batch;
+    :mod:`kinlib._background`). ``example()``: the call's arguments with an empty batch;
     ``wait=True`` waits for the kernel instead."""
-    if numba_disabled():
-        return None
+    key = "_accel." + name
+    fn = peek(key)
+    if fn is not None or numba_disabled():
+        return fn
 
     def prepare():
         built = _kernels()
         if built is None:
             return None
         fn = getattr(built, name)
-        fn(*example)
+        fn(*example())
         return fn
 
-    return ready(f"_accel.{name}", prepare, wait=wait)
+    return ready(key, prepare, wait=wait)

@@ -57,7 +57,8 @@ class _Slot:
 
 _lock = threading.Lock()
 _slots: dict[str, _Slot] = {}
-_jobs: collections.deque[_Slot] = collections.deque()
+_ready: dict[str, object] = {}  # the kernels ready: a call's one dict lookup
+_jobs: collections.deque[tuple[str, _Slot]] = collections.deque()
 _worker: threading.Thread | None = None
 _warned: set[str] = set()
 
@@ -71,9 +72,11 @@ def warn_once(message: str, stacklevel: int = 3) -> None:
     warnings.warn(message, RuntimeWarning, stacklevel=stacklevel)
 
 
-def _run(slot: _Slot) -> None:
+def _run(slot: _Slot, key: str) -> None:
     try:
         slot.kernel = slot.prepare()
+        if slot.kernel is not None:
+            _ready[key] = slot.kernel
     except KernelsUnavailable as exc:
         slot.error = str(exc)
     except BaseException as exc:  # whatever stops it, the callers use numpy
@@ -91,25 +94,29 @@ def _drain() -> None:
             if not _jobs:
                 _worker = None
                 return
-            slot = _jobs.popleft()
-        _run(slot)
+            key, slot = _jobs.popleft()
+        _run(slot, key)
 
 
 def ready(key: str, prepare: Callable[[], object], *, wait: bool = False):
     """The kernel ``prepare()`` returns, once it is ready; else None (use the numpy path).
 
-    ``prepare`` imports the kernel and calls it once on an empty batch of the caller's
-    argument types (numba compiles it for those types, or loads it from its cache), and
-    returns it; None if numba is not installed; or raises :class:`KernelsUnavailable`.
+    A kernel once ready costs its callers one dict lookup. ``prepare`` imports the kernel
+    and calls it once on an empty batch of the caller's argument types (numba compiles it
+    for those types, or loads it from its cache), and returns it; None if numba is not
+    installed; or raises :class:`KernelsUnavailable`.
     The first ask for ``key`` starts it in the background thread. ``wait=True`` waits for
     the kernel (or its failure) instead of answering None while it is prepared.
     """
     global _worker
+    kernel = _ready.get(key)
+    if kernel is not None:
+        return kernel
     with _lock:
         slot = _slots.get(key)
         if slot is None:
             slot = _slots[key] = _Slot(prepare)
-            _jobs.append(slot)
+            _jobs.append((key, slot))
             if _worker is None:
                 _worker = threading.Thread(target=_drain, name="kinlib-kernels")
                 _worker.start()
@@ -124,8 +131,7 @@ def ready(key: str, prepare: Callable[[], object], *, wait: bool = False):
 
 def peek(key: str):
     """The kernel of ``key`` if it is ready, else None (nothing is started)."""
-    slot = _slots.get(key)
-    return slot.kernel if slot is not None and slot.done.is_set() else None
+    return _ready.get(key)
 
 
 def _after_fork_in_child() -> None:

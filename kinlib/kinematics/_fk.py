@@ -21,7 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .._accel import numba_disabled
-from .._background import KernelsUnavailable, ready, warn_once
+from .._background import KernelsUnavailable, peek, ready, warn_once
 
 __all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian", "in_threads"]
 
@@ -197,14 +197,16 @@ def _compiled():
 WAIT_MIN = 100_000
 
 
-def kernel(name: str, example: tuple, *, module: str = "_fk_numba", wait: bool = False):
+def kernel(name: str, example, *, module: str = "_fk_numba", wait: bool = False):
     """The compiled kernel ``<module>.<name>`` once it is ready, else None (see
     :mod:`kinlib._background`: it is then prepared in the background, and the caller takes
-    its numpy path). ``example``: the call's arguments with an empty batch (the same types:
-    numba compiles the kernel for them). None for good when numba is missing or
+    its numpy path). ``example()``: the call's arguments with an empty batch (the same
+    types: numba compiles the kernel for them). None for good when numba is missing or
     ``KINLIB_NUMBA=0``."""
-    if numba_disabled():
-        return None
+    key = module + "." + name
+    fn = peek(key)
+    if fn is not None or numba_disabled():
+        return fn
 
     def prepare():
         if module != "_fk_numba" and _import_kernels("_fk_numba") is None:
@@ -213,10 +215,10 @@ def kernel(name: str, example: tuple, *, module: str = "_fk_numba", wait: bool =
         if kernels is None:
             return None
         fn = getattr(kernels, name)
-        fn(*example)
+        fn(*example())
         return fn
 
-    return ready(f"{module}.{name}", prepare, wait=wait)
+    return ready(key, prepare, wait=wait)
 
 
 PARALLEL_MIN = 4096  # below this, starting the threads costs more than it saves
@@ -339,7 +341,7 @@ def run_chain(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None)
     if compiled is not False:
         q = writable(q)
         n, args = q.shape[0], (chain.ints, chain.floats, chain.D)
-        fn = kernel("chain", (q[:0], *args), wait=wait_for_kernel(compiled, n))
+        fn = kernel("chain", lambda: (q[:0], *args), wait=wait_for_kernel(compiled, n))
         if fn is not None:
             if n < PARALLEL_MIN:  # (the common case: no slicing, no threads)
                 return fn(q, *args)
@@ -353,7 +355,8 @@ def run_chain_jacobian(chain: ChainTable, q: np.ndarray, *, compiled: bool | Non
     if compiled is not False:
         q = writable(q)
         n, args = q.shape[0], (chain.ints, chain.floats, chain.D, q.shape[1])
-        fn = kernel("chain_jacobian", (q[:0], *args), wait=wait_for_kernel(compiled, n))
+        fn = kernel("chain_jacobian", lambda: (q[:0], *args),
+                    wait=wait_for_kernel(compiled, n))
         if fn is not None:
             if n < PARALLEL_MIN:
                 return fn(q, *args)
@@ -371,7 +374,7 @@ def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None
     if compiled is not False:
         q = writable(q)
         args = (sel, table.ints, table.floats, table.M)
-        fn = kernel("tree", (q[:0], *args), wait=wait_for_kernel(compiled, q.shape[0]))
+        fn = kernel("tree", lambda: (q[:0], *args), wait=wait_for_kernel(compiled, q.shape[0]))
         if fn is not None:
             return fn(q, *args)
     out = np.empty((q.shape[0], table.n + 1, 4, 4))

@@ -208,7 +208,7 @@ def solve_ik(robot, T_target, q0=None, *, link=None, position_only=False,
                     chain.floats, chain.D, position_only, tol_p, tol_r, max_iterations,
                     *(o[a:b] for o in out))
 
-        fn = _fk.kernel("ik_lm", args(0, 0), module="_ik_numba",
+        fn = _fk.kernel("ik_lm", lambda: args(0, 0), module="_ik_numba",
                         wait=_fk.wait_for_kernel(compiled, n, WAIT_MIN))
     if fn is not None:
         in_threads(fn, n, args, min_batch=8)

@@ -78,9 +78,10 @@ def prepare_kernels(names=None, *, wait: bool = True) -> dict[str, bool]:
             target = _fk._chain_numpy(chain, q)[0]  # (numpy: "ik" prepares the IK loop only)
             ik.solve_ik(robot, target, q[0], restarts=0, compiled=compiled)
         else:
-            _conversion("matrix_from_quat", (quats, rots), wait=wait)
-            _conversion("quat_from_matrix", (rots, quats), wait=wait)
-            _conversion("rotation_errors", (rots, np.zeros(0), np.zeros(0)), wait=wait)
+            _conversion("matrix_from_quat", lambda: (quats, rots), wait=wait)
+            _conversion("quat_from_matrix", lambda: (rots, quats), wait=wait)
+            _conversion("rotation_errors", lambda: (rots, np.zeros(0), np.zeros(0)),
+                        wait=wait)
     return {name: all(peek(key) is not None for key in _KEYS[name]) for name in chosen}
 
 

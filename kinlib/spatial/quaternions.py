@@ -202,7 +202,7 @@ def matrix_from_quat(q):
         return _matrix_from_quat_numpy(a)
     flat = np.ascontiguousarray(a.reshape(-1, 4))
     out = np.empty((len(flat), 3, 3))
-    fn = kernel("matrix_from_quat", (flat[:0], out[:0]))
+    fn = kernel("matrix_from_quat", lambda: (flat[:0], out[:0]))
     if fn is None:
         return _matrix_from_quat_numpy(a)
     if fn(flat, out) >= 0:
@@ -251,7 +251,7 @@ def quat_from_matrix(R):
         return _quat_from_matrix_numpy(m)
     flat = np.ascontiguousarray(m.reshape(-1, 3, 3))
     out = np.empty((len(flat), 4))
-    fn = kernel("quat_from_matrix", (flat[:0], out[:0]))
+    fn = kernel("quat_from_matrix", lambda: (flat[:0], out[:0]))
     if fn is None:
         return _quat_from_matrix_numpy(m)
     fn(flat, out)

@@ -158,7 +158,7 @@ def rotation_errors(R) -> tuple[np.ndarray, np.ndarray]:
     if a.size >= 9 * MIN_BATCH:
         flat = np.ascontiguousarray(a.reshape(-1, 3, 3))
         err, det = np.empty(len(flat)), np.empty(len(flat))
-        fn = kernel("rotation_errors", (flat[:0], err[:0], det[:0]))
+        fn = kernel("rotation_errors", lambda: (flat[:0], err[:0], det[:0]))
         if fn is not None:
             fn(flat, err, det)
             return err.reshape(a.shape[:-2]), det.reshape(a.shape[:-2])
