@@ -20,7 +20,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ._background import KernelsUnavailable, peek, ready, warn_once
+from ._background import KernelsUnavailable, compiled, warn_once
 
 __all__ = ["MIN_BATCH", "kernel", "kernels", "numba_disabled"]
 
@@ -154,17 +154,6 @@ def kernel(name: str, example, *, wait: bool = False):
     numpy path while it is compiled (or loaded from numba's cache) in the background (see
     :mod:`kinlib._background`). ``example()``: the call's arguments with an empty batch;
     ``wait=True`` waits for the kernel instead."""
-    key = "_accel." + name
-    fn = peek(key)
-    if fn is not None or numba_disabled():
-        return fn
-
-    def prepare():
-        built = _kernels()
-        if built is None:
-            return None
-        fn = getattr(built, name)
-        fn(*example())
-        return fn
-
-    return ready(key, prepare, wait=wait)
+    if numba_disabled():
+        return None
+    return compiled("_accel." + name, _kernels, name, example, wait=wait)

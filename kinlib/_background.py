@@ -34,7 +34,7 @@ import threading
 import warnings
 from collections.abc import Callable
 
-__all__ = ["KernelsUnavailable", "peek", "ready", "warn_once"]
+__all__ = ["KernelsUnavailable", "compiled", "peek", "ready", "warn_once"]
 
 
 class KernelsUnavailable(Exception):
@@ -127,6 +127,26 @@ def ready(key: str, prepare: Callable[[], object], *, wait: bool = False):
     if slot.error is not None:
         warn_once(slot.error)
     return slot.kernel
+
+
+def compiled(key: str, load: Callable[[], object], name: str, example: Callable[[], tuple], *,
+             wait: bool = False):
+    """:func:`ready` for the kernel ``getattr(load(), name)`` (``load()``: the kernels'
+    module or namespace, None without numba, or :class:`KernelsUnavailable`), prepared by a
+    call on ``example()``, the caller's arguments with an empty batch."""
+    kernel = _ready.get(key)
+    if kernel is not None:
+        return kernel
+
+    def prepare():
+        kernels = load()
+        if kernels is None:
+            return None
+        fn = getattr(kernels, name)
+        fn(*example())
+        return fn
+
+    return ready(key, prepare, wait=wait)
 
 
 def peek(key: str):

@@ -133,13 +133,14 @@ def _model(m: Mistake, args: tuple):
         return _NOT_APPLICABLE
 
 
-def _frozen(value):
-    """``value`` with its arrays read-only (they are shared by every answer judged)."""
+def read_only(value):
+    """``value`` with its arrays (nested in lists and tuples too) made read-only: what is
+    shared by every answer judged on a case."""
     if isinstance(value, np.ndarray):
         value.setflags(write=False)
     elif isinstance(value, list | tuple):
         for v in value:
-            _frozen(v)
+            read_only(v)
     return value
 
 
@@ -148,7 +149,7 @@ def _once(memo: dict | None, key, compute):
     if memo is None:
         return compute()
     if key not in memo:
-        memo[key] = _frozen(compute())
+        memo[key] = read_only(compute())
     return memo[key]
 
 

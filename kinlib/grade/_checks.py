@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..check import RIGHT, Mistake, Rule, Verdict, as_numeric, close, fmt
+from ..check._verdict import read_only
 
 __all__ = ["Mistake", "Verdict", "Check", "Assignment", "RIGHT", "as_numeric", "close", "fmt",
            "shared_cases"]
@@ -77,14 +78,6 @@ _SHARED_MAX = 64
 _shared_lock = threading.Lock()
 
 
-def _read_only(value):
-    if isinstance(value, np.ndarray):
-        value.setflags(write=False)
-    elif isinstance(value, list | tuple):
-        for v in value:
-            _read_only(v)
-
-
 def shared_cases(assignment: str, check: Check, seed: int) -> tuple[list[tuple], list[dict]]:
     """``check.make_cases(seed)`` made once in this process for every submission judged on
     them (a class's submissions share the cases of their seed), their arrays read-only, and
@@ -98,7 +91,7 @@ def shared_cases(assignment: str, check: Check, seed: int) -> tuple[list[tuple],
             _SHARED.move_to_end(key)
             return found
     cases = check.make_cases(seed)
-    _read_only(cases)
+    read_only(cases)
     made = (cases, [{} for _ in cases])
     with _shared_lock:
         found = _SHARED.setdefault(key, made)

@@ -21,7 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .._accel import numba_disabled
-from .._background import KernelsUnavailable, peek, ready, warn_once
+from .._background import KernelsUnavailable, compiled, warn_once
 
 __all__ = ["ChainTable", "FKTable", "run", "run_chain", "run_chain_jacobian", "in_threads"]
 
@@ -203,22 +203,15 @@ def kernel(name: str, example, *, module: str = "_fk_numba", wait: bool = False)
     its numpy path). ``example()``: the call's arguments with an empty batch (the same
     types: numba compiles the kernel for them). None for good when numba is missing or
     ``KINLIB_NUMBA=0``."""
-    key = module + "." + name
-    fn = peek(key)
-    if fn is not None or numba_disabled():
-        return fn
+    if numba_disabled():
+        return None
 
-    def prepare():
+    def load():
         if module != "_fk_numba" and _import_kernels("_fk_numba") is None:
             return None  # (the IK loop calls the FK kernels' helpers)
-        kernels = _import_kernels(module)
-        if kernels is None:
-            return None
-        fn = getattr(kernels, name)
-        fn(*example())
-        return fn
+        return _import_kernels(module)
 
-    return ready(key, prepare, wait=wait)
+    return compiled(module + "." + name, load, name, example, wait=wait)
 
 
 PARALLEL_MIN = 4096  # below this, starting the threads costs more than it saves
