@@ -157,8 +157,9 @@ def release_notebook(nb):
         elif re.search(r"^\s*" + re.escape(BEGIN), cell.source, re.M):
             raise KinlibError(f"cell {i}: solution markers belong in code cells")
     code = {i: c.source for i, c in enumerate(student.cells) if c.cell_type == "code"}
+    used = set().union(*(used_names(src, f"cell {j}") for j, src in code.items())) \
+        if dropped else set()
     for i, names in dropped.items():
-        used = set().union(*(used_names(src, f"cell {j}") for j, src in code.items()))
         missing = (names & used) - assigned_names(code[i], f"cell {i}")
         if missing:
             raise KinlibError(f"cell {i}: the solution assigns {', '.join(sorted(missing))}, "

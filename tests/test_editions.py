@@ -83,8 +83,16 @@ def expressions(code: str, least: int = 1) -> set[str]:
         tree = ast.parse(re.sub(r"^(\s*)[%!].*$", r"\1pass", code, flags=re.M))
     except SyntaxError:
         return set()
-    return {ast.dump(node) for node in ast.walk(tree)
-            if isinstance(node, ast.expr) and sum(1 for _ in ast.walk(node)) >= least}
+    found = set()
+
+    def size(node) -> int:  # nodes below and at ``node``, each counted once
+        n = 1 + sum(size(child) for child in ast.iter_child_nodes(node))
+        if isinstance(node, ast.expr) and n >= least:
+            found.add(ast.dump(node))
+        return n
+
+    size(tree)
+    return found
 
 
 def test_both_editions_hold_the_same_notebooks():
@@ -141,14 +149,15 @@ def test_no_cell_depends_on_a_students_answer(name):
     nb = read(INSTRUCTOR, name)
     code = {i: c.source for i, c in enumerate(nb.cells) if c.cell_type == "code"
             and SOLUTION_TAG not in c.metadata.get("tags", ())}  # instructor-only cells may
+    reads = {i: used_names(src) - assigned_names(src) for i, src in code.items()}
     for ex_id, answer, a, c in exercise_cells(nb):
         solution = "\n".join(block for block in re.findall(
             rf"^{re.escape(BEGIN)}\n(.*?)^{re.escape(END)}", code[a], re.M | re.S))
         names = assigned_names(solution) | {answer}
-        for i, src in code.items():
+        for i in code:
             if i in (a, c):
                 continue
-            leaked = names & (used_names(src) - assigned_names(src))
+            leaked = names & reads[i]
             assert not leaked, f"{name}: cell {i} reads {sorted(leaked)}, set by exercise {ex_id}"
 
 
@@ -163,11 +172,13 @@ def test_no_solution_code_in_the_student_edition(name):
     before the exercise (a given)."""
     inst, student = read(INSTRUCTOR, name), read(STUDENT, name)
     shown = set().union(*(expressions(c.source) for c in student.cells if c.cell_type == "code"))
+    before = set()  # the expressions of the cells so far that hold no solution: givens
     for i, cell in enumerate(inst.cells):
-        if cell.cell_type != "code" or BEGIN not in cell.source:
+        if cell.cell_type != "code":
             continue
-        before = set().union(set(), *(expressions(c.source) for c in inst.cells[:i]
-                                      if c.cell_type == "code" and BEGIN not in c.source))
+        if BEGIN not in cell.source:
+            before |= expressions(cell.source)
+            continue
         for block in solution_blocks(cell.source):
             leaked = (expressions(block, SOLUTION_SIZE) & shown) - before
             assert not leaked, f"{name}: cell {i}'s solution is shown in the student edition: " \
