@@ -6,6 +6,7 @@ from the kinlib function under test.
 """
 
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -281,6 +282,36 @@ def test_is_rotation_false_for_non_finite():
     big[10, 0, 0] = np.nan
     big[20, 2, 1] = -np.inf
     assert np.flatnonzero(~kl.is_rotation(big)).tolist() == [10, 20]
+
+
+#: finite entries whose products overflow: RᵀR and det R come out NaN (inf − inf), and a
+#: NaN compared with the tolerance is never "too large" (check_rotation accepted this once)
+OVERFLOWING = np.array([[1e200, 1e200, 1e200], [1e200, -1e200, 1e200], [1e200, 1e200, -1e200]])
+
+
+def test_a_matrix_whose_checks_overflow_is_no_rotation():
+    kl.prepare_kernels(["conversions"])  # the batch of 5000 below: the compiled kernel
+    for R, where in ((OVERFLOWING, r"R"), (np.stack([np.eye(3), OVERFLOWING]), r"R\[1\]"),
+                     (np.concatenate([random_rotations(4999, seed=3), OVERFLOWING[None]]),
+                      r"R\[4999\]")):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # and no overflow warning on the way
+            with pytest.raises(kl.KinlibError, match=where + " is not a rotation matrix"):
+                kl.check_rotation(R)
+            assert not np.asarray(kl.is_rotation(R)).ravel()[-1]
+
+
+def test_one_matrix_is_judged_to_the_bit_as_in_a_batch():
+    """One matrix takes a scalar path, a batch numpy's: the same sums in the same order."""
+    from kinlib.spatial.rotations import _rotation_errors_numpy
+
+    rng = np.random.default_rng(4)
+    M = np.concatenate([rng.normal(size=(500, 3, 3)), random_rotations(500, seed=5),
+                        random_rotations(500, seed=6) + rng.normal(size=(500, 3, 3)) * 1e-7])
+    err, det = _rotation_errors_numpy(M)
+    one = np.array([_rotation_errors_numpy(np.ascontiguousarray(m)) for m in M])
+    np.testing.assert_array_equal(one[:, 0], err)
+    np.testing.assert_array_equal(one[:, 1], det)
 
 
 # --------------------------------------------------------------------------- nearest_rotation

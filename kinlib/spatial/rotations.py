@@ -7,6 +7,8 @@ its columns (direction cosines). It is orthonormal, :math:`R^T R = I`, with
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .._accel import MIN_BATCH, kernel
@@ -167,6 +169,19 @@ def rotation_errors(R) -> tuple[np.ndarray, np.ndarray]:
 
 def _rotation_errors_numpy(a):
     """The numpy reference of :func:`rotation_errors` for a checked (..., 3, 3) array."""
+    if a.ndim == 2:  # one matrix: the same sums on Python floats, without numpy's per-call cost
+        (x0, x1, x2), (y0, y1, y2), (z0, z1, z2) = a.tolist()  # rows; columns c0 = (x0, y0, z0)
+        errs = (abs(x0 * x0 + y0 * y0 + z0 * z0 - 1.0), abs(x1 * x1 + y1 * y1 + z1 * z1 - 1.0),
+                abs(x2 * x2 + y2 * y2 + z2 * z2 - 1.0), abs(x0 * x1 + y0 * y1 + z0 * z1),
+                abs(x0 * x2 + y0 * y2 + z0 * z2), abs(x1 * x2 + y1 * y2 + z1 * z2))
+        err = math.nan if any(e != e for e in errs) else max(errs)  # NaN wins, as in np.max
+        det = x0 * (y1 * z2 - z1 * y2) + y0 * (z1 * x2 - x1 * z2) + z0 * (x1 * y2 - y1 * x2)
+        return np.float64(err), np.float64(det)
+    with np.errstate(over="ignore", invalid="ignore"):  # huge entries: inf or NaN, judged
+        return _rotation_errors_batch(a)
+
+
+def _rotation_errors_batch(a):
     c0, c1, c2 = a[..., :, 0], a[..., :, 1], a[..., :, 2]
 
     def dot(u, v):
@@ -185,7 +200,11 @@ def _rotation_errors_numpy(a):
         ),
         axis=0,
     )
-    det = dot(c0, np.cross(c1, c2))
+    # c0 · (c1 × c2), the cross product written out (np.cross costs more than the
+    # arithmetic for one matrix; the same products in the same order: the same bits)
+    det = (c0[..., 0] * (c1[..., 1] * c2[..., 2] - c1[..., 2] * c2[..., 1])
+           + c0[..., 1] * (c1[..., 2] * c2[..., 0] - c1[..., 0] * c2[..., 2])
+           + c0[..., 2] * (c1[..., 0] * c2[..., 1] - c1[..., 1] * c2[..., 0]))
     return err, det
 
 
@@ -225,14 +244,14 @@ def check_rotation(R, name: str = "R", *, tol: float = ROTATION_TOL) -> np.ndarr
     a = as_array(R, name, (3, 3))
     tol = as_tol(tol)
     err, det = rotation_errors(a)
-    bad_orth = err > tol
+    bad_orth = ~(err <= tol)  # (NaN too: the products of huge entries overflow)
     if np.any(bad_orth):
         where = fmt_index(a.shape[:-2], bad_orth)
         raise KinlibError(
             f"{name}{where} is not a rotation matrix: its columns are not orthonormal, "
             f"max |RᵀR − I| = {err[bad_orth].flat[0]:.3g} (tolerance {tol:g})"
         )
-    bad_det = np.abs(det - 1.0) > tol
+    bad_det = ~(np.abs(det - 1.0) <= tol)
     if np.any(bad_det):
         where = fmt_index(a.shape[:-2], bad_det)
         d = det[bad_det].flat[0]
