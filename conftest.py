@@ -130,7 +130,7 @@ def _start_site_build(jobs: int, executed: Path | None = None) -> None:
 #: the files that take longest, in this order before all others: ``make test`` hands files to
 #: its two workers in collection order (``--no-loadscope-reorder``), so the long ones start
 #: at once and the short ones fill in around them
-FIRST = ("tests/test_lab.py", "tests/test_viewer_remote.py", "tests/test_lab_cleanup.py",
+FIRST = ("tests/test_lab.py", "tests/test_lab_cleanup.py",
          "tests/test_urdf_errors.py", "tests/test_grader_hostile.py", "tests/test_sym_helpers.py")
 
 

@@ -1,6 +1,6 @@
 """The 3-D viewer the way students meet Jupyter: on a hub, a remote machine, Binder.
 
-What tests/test_lab.py (JupyterLab) and tests/test_viewer_remote.py (Notebook 7) share: a
+What tests/test_lab.py's JupyterLab and Notebook 7 checks share: a
 Jupyter server under a base URL, as a JupyterHub serves ``/user/NAME/``, and a browser
 page that may reach that server's URLs only: every other request (another port, another
 path, the internet) is aborted and recorded, and so is any websocket to anywhere else; any
@@ -159,12 +159,13 @@ def check_viewers(server, page, refused: list, tmp_path: Path, at_load: list[str
     on the notebook again, as reloading the tab does: then the reload and re-run checks
     run too."""
     lab = reopen is not None
+    app = "JupyterLab" if lab else "Notebook 7"
     scenes = page.locator(f"{NOTEBOOK} .jp-OutputArea-output .kinlib-scene")
     assert scenes.count() == 2, f"{scenes.count()} viewers"
     scene, other = scenes.first, scenes.nth(1)
-    other_png = assert_robot_drawn(other, f"{server.app}: the second viewer",
+    other_png = assert_robot_drawn(other, f"{app}: the second viewer",
                                    tmp_path / "other.png")
-    png = assert_robot_drawn(scene, f"{server.app}: the viewer", tmp_path / "drawn.png")
+    png = assert_robot_drawn(scene, f"{app}: the viewer", tmp_path / "drawn.png")
 
     # a joint slider turns the robot; the control: untouched, the picture stays
     shoot = element_shooter(scene)

@@ -7,8 +7,8 @@ repository), notebook windowing off (every cell stays in the page, so it can be 
 no news or update checks (nothing from the network); ``env`` is added to the server's
 environment (its kernels inherit it) and ``save_widget_state`` turns on JupyterLab's *Save
 Jupyter widget state in notebooks*. ``base_url`` serves it under a path,
-as a JupyterHub serves ``/user/NAME/``; ``app="notebook"`` starts Jupyter Notebook 7
-instead of JupyterLab.
+as a JupyterHub serves ``/user/NAME/`` (with the ``notebook`` package installed, the same
+server serves Jupyter Notebook 7's pages as well, under ``notebooks/``).
 
 The server asks Linux to SIGTERM it when the test process dies, however it dies (a
 SIGTERMed server shuts its kernels down). Every process the server starts inherits
@@ -79,11 +79,8 @@ class Lab:
     """A JupyterLab server over a copy of ``notebooks`` (a folder), rooted in ``work``."""
 
     def __init__(self, notebooks: Path, work: Path, start_timeout: float = 60.0, *,
-                 base_url: str = "/", app: str = "lab", env: dict | None = None,
+                 base_url: str = "/", env: dict | None = None,
                  save_widget_state: bool = False):
-        if app not in ("lab", "notebook"):
-            raise ValueError(f"app: 'lab' or 'notebook', got {app!r}")
-        self.app = app
         self.base_url = "/" + base_url.strip("/") + "/" if base_url.strip("/") else "/"
         self.work = Path(work)
         self.root = self.work / "notebooks"
@@ -135,14 +132,12 @@ class Lab:
             path = Path(env["JUPYTERLAB_SETTINGS_DIR"]) / name
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text(json.dumps(values))
-        cmd = [sys.executable, "-m", "jupyter", self.app, "--no-browser",
+        cmd = [sys.executable, "-m", "jupyter", "lab", "--no-browser",
                f"--port={self.port}", "--ServerApp.port_retries=0", "--ServerApp.ip=127.0.0.1",
                f"--IdentityProvider.token={self.token}",
                f"--ServerApp.root_dir={self.root}",
                "--LabApp.news_url=", "--ServerApp.open_browser=False",
-               f"--ServerApp.base_url={self.base_url}"]
-        if self.app == "lab":
-            cmd.append("--LabApp.expose_app_in_browser=True")
+               f"--ServerApp.base_url={self.base_url}", "--LabApp.expose_app_in_browser=True"]
         if os.getuid() == 0:
             cmd.append("--allow-root")
         with open(self.log, "wb") as log:

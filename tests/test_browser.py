@@ -1,7 +1,6 @@
 """The robot really appears in a browser: headless Chromium renders the self-contained
 page of ``viz.static_html()`` (the meshcat viewer and the scene inline) from ``file://``
-with all http(s) blocked. (The live widget in JupyterLab and Notebook 7: test_lab.py,
-test_viewer_remote.py.)
+with all http(s) blocked. (The live widget in JupyterLab and Notebook 7: test_lab.py.)
 
 The PUMA 560 is drawn in a saturated magenta no other part of the viewer uses (sky-blue
 background, grey grid, orange joint axes), so its pixels can be counted in a screenshot.

@@ -21,10 +21,11 @@ count; afterwards the notebook is closed and its kernel shut down. Then:
 
 The server runs under a hub's base URL (``/user/student/``, as JupyterHub serves a
 student) and the page may reach that server's URLs only: any other request or websocket
-fails the test (``hub_viewer.fenced_page``). On the same server and page, the last test
-runs the viewer checks of tests/hub_viewer.py (two viewers, a slider, a reload, re-running
-the cell, removing the robot from the kernel's side); tests/test_viewer_remote.py runs
-them in Jupyter Notebook 7.
+fails the test (``hub_viewer.fenced_page``). On the same server, the last two tests
+run the viewer checks of tests/hub_viewer.py (two viewers, a slider, a reload, re-running
+the cell, removing the robot from the kernel's side): in JupyterLab, on the same page, and
+in Jupyter Notebook 7, which the same server serves (its ``/notebooks/`` pages, as a hub
+running JupyterLab with Notebook 7 installed does), in a page of its own.
 
 Screenshots of every notebook go to pytest's ``tmp_path``; with
 ``KINLIB_SCREENSHOTS=DIR`` (``make screenshots``), the two the README shows go to ``DIR``.
@@ -56,7 +57,15 @@ from browser_helpers import (
     settled,
     solid_axes,
 )
-from hub_viewer import BASE_URL, MOVED, check_viewers, fenced_page, write_viewer_notebook
+from hub_viewer import (
+    BASE_URL,
+    MOVED,
+    NOTEBOOK,
+    check_viewers,
+    fenced_page,
+    wait_for_kernel,
+    write_viewer_notebook,
+)
 from lab_harness import Lab, marked_processes
 
 from kinlib.check import exercises, results
@@ -74,7 +83,6 @@ README_SHOTS = {"09_denavit_hartenberg": "lab_denavit_hartenberg.png",
                 "04_gimbal_lock": "lab_gimbal_lock.png"}
 RUN_TIMEOUT = 240.0
 
-NOTEBOOK = ".jp-NotebookPanel:not(.lm-mod-hidden)"
 PROMPTS = f"""() => [...document.querySelectorAll('{NOTEBOOK} .jp-CodeCell .jp-InputPrompt')]
   .map(p => p.innerText.trim())"""
 STDERR = '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'
@@ -382,6 +390,36 @@ def test_the_viewer_works_through_the_server_alone(lab, lab_page, tmp_path):
     finally:
         page.screenshot(path=str(tmp_path / "page.png"))
         page.evaluate(CLOSE_ALL)
+        session = _session(lab, "viewer")
+        if session is not None:
+            lab.close_session(session["id"])
+
+
+def test_the_viewer_works_in_notebook_7(lab, browser, tmp_path):
+    """tests/hub_viewer.py's checks in Jupyter Notebook 7 (the ``/notebooks/`` page the same
+    server serves under the hub's base URL), in a page fenced to the server."""
+    write_viewer_notebook(lab.root)
+    context, page, refused = fenced_page(browser, lab)
+    try:
+        # Notebook 7.6 throws one error of its own while it loads (a plugin's settings
+        # schema; a one-cell "1 + 1" notebook gets it too): the errors before kinlib's
+        # viewer runs are the baseline, and the viewer may add none
+        page.goto(f"{lab.base}/notebooks/viewer.ipynb?token={lab.token}")
+        page.wait_for_function(f"() => document.querySelectorAll('{NOTEBOOK} .jp-Cell')"
+                               ".length === 4", timeout=90_000)
+        shell = page.evaluate("() => [document.body.dataset.notebook, "
+                              "!!document.getElementById('jp-NotebookLogo')]")
+        assert shell == ["notebooks", True], f"not Notebook 7's notebook page: {shell}"
+        wait_for_kernel(lab, page)
+        page.wait_for_timeout(1000)  # the app settles
+        at_load = list(page.errors)
+        prompts = run_all(page, "viewer")  # the same menus as JupyterLab's
+        assert all(re.fullmatch(r"\[\d+\]:", p) for p in prompts), \
+            f"cells that did not run: {prompts}"
+        check_viewers(lab, page, refused, tmp_path, at_load)
+    finally:
+        page.screenshot(path=str(tmp_path / "page.png"))
+        context.close()
         session = _session(lab, "viewer")
         if session is not None:
             lab.close_session(session["id"])
