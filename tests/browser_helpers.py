@@ -159,10 +159,18 @@ def settled(shoot, tries: int = 20) -> bytes:
     return last
 
 
+#: in the page: pause the trajectory a kinlib scene element plays, if it plays one (a scene
+#: made by ``viz.animate`` plays it once when it appears: its picture settles only at the end)
+PAUSE_ANIMATION = ("e => { const a = e.kinlibScene && e.kinlibScene.viewer.animator;"
+                   " if (a && a.playing) a.pause(); }")
+
+
 def assert_robot_drawn(frame_el, what: str, shot) -> bytes:
     """The viewer ``frame_el`` (a kinlib scene element) draws a robot: at least ``AXES_SEEN``
-    filled joint-axis pixels once the picture has settled. The picture is written to
-    ``shot`` and returned."""
+    filled joint-axis pixels once the picture has settled (a trajectory that plays is
+    paused where it is, rather than waited for). The picture is written to ``shot`` and
+    returned."""
+    frame_el.evaluate(PAUSE_ANIMATION)
     shoot = element_shooter(frame_el)
     wait_for_mask(shoot, solid_axes, lambda m: m.sum() >= AXES_SEEN, timeout=20)
     png = settled(shoot)
