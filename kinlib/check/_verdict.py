@@ -144,7 +144,7 @@ def read_only(value):
     return value
 
 
-def _once(memo: dict | None, key, compute):
+def once_per_case(memo: dict | None, key, compute):
     """``compute()``, or what it gave before for this case (``memo``: None, no memo)."""
     if memo is None:
         return compute()
@@ -173,17 +173,18 @@ class Rule:
         once per case instead of once per answer, and kept read-only."""
         if self.judge is not None:
             return self.judge(args, got)
-        expected = _once(memo, "expected",
+        expected = once_per_case(memo, "expected",
                          lambda: np.asarray(self.reference(*args), dtype=float))
         a, bad = as_numeric(got, expected.shape, self.what, returned=self.returned)
         if a is None:
             return Verdict(bad.ok, bad.key, bad.message, expected)
-        right = [expected] + (_once(memo, "accept", lambda: list(self.accept(*args)))
+        right = [expected] + (once_per_case(memo, "accept",
+                                            lambda: list(self.accept(*args)))
                               if self.accept else [])
         if any(close(a, r, self.atol) for r in right):
             return RIGHT
         for k, m in enumerate(self.mistakes):
-            wrong = _once(memo, ("mistake", k), lambda m=m: _model(m, args))
+            wrong = once_per_case(memo, ("mistake", k), lambda m=m: _model(m, args))
             if wrong is _NOT_APPLICABLE:
                 continue
             if close(a, wrong, self.atol) and not close(wrong, expected, self.atol):

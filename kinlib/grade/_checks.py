@@ -18,10 +18,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..check import RIGHT, Mistake, Rule, Verdict, as_numeric, close, fmt
-from ..check._verdict import read_only
+from ..check._verdict import once_per_case, read_only
 
 __all__ = ["Mistake", "Verdict", "Check", "Assignment", "RIGHT", "as_numeric", "close", "fmt",
-           "shared_cases"]
+           "once_per_case", "shared_cases"]
 
 
 @dataclass

@@ -22,7 +22,7 @@ from pathlib import Path
 
 from ..errors import KinlibError
 from ._bwrap import Sandbox, find_sandbox
-from ._checks import Assignment, Check, Verdict, fmt, shared_cases
+from ._checks import Assignment, Check, Verdict, fmt, once_per_case, shared_cases
 from ._sandbox import BLOCKED, Worker, WorkerDied, WorkerTimeout
 from ._wire import WireError, decode, encode
 
@@ -307,18 +307,24 @@ def _judge(check: Check, args: tuple, status: str, payload, memo: dict | None = 
 
 
 def _is_trivial(check: Check, case, memo: dict | None = None) -> bool:
-    if memo is not None and "trivial" in memo:
-        return memo["trivial"]
-    try:
-        trivial = bool(check.is_trivial(case))
-    except Exception:  # a reference that fails on a case: judge that case like any other
-        trivial = False
-    if memo is not None:
-        memo["trivial"] = trivial
-    return trivial
+    def trivial() -> bool:
+        try:
+            return bool(check.is_trivial(case))
+        except Exception:  # a reference that fails on a case: judge that case like any other
+            return False
+
+    return once_per_case(memo, "trivial", trivial)
 
 
-def _summarise(check: Check, cases, results, verdicts, memos=None) -> dict:
+def _judged(check: Check, cases, memos, results) -> dict:
+    """The check's part of a result: each case's answer (``results``: (status, payload)
+    per case) judged with the case's memo (:func:`shared_cases`), and summarised."""
+    verdicts = [_judge(check, c, s, p, m)
+                for c, (s, p), m in zip(cases, results, memos, strict=True)]
+    return _summarise(check, cases, results, verdicts, memos)
+
+
+def _summarise(check: Check, cases, results, verdicts, memos) -> dict:
     passed = sum(v.ok for v in verdicts)
     fails = [(c, r, v) for c, r, v in zip(cases, results, verdicts, strict=True) if not v.ok]
     counts = Counter(v.key for _, _, v in fails)
@@ -335,8 +341,7 @@ def _summarise(check: Check, cases, results, verdicts, memos=None) -> dict:
     total = len(cases)
     credit = passed
     if check.is_trivial is not None:  # right "trivial" answers count only beside right others
-        trivial = [_is_trivial(check, c, m) for c, m in zip(cases, memos or [None] * total,
-                                                              strict=True)]
+        trivial = [_is_trivial(check, c, m) for c, m in zip(cases, memos, strict=True)]
         main = [v.ok for v, t in zip(verdicts, trivial, strict=True) if not t]
         easy = sum(v.ok for v, t in zip(verdicts, trivial, strict=True) if t)
         rate = sum(main) / len(main) if main else 1.0
@@ -426,10 +431,8 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
     try:
         for check in spec.checks:
             cases, memos = shared_cases(name, check, seed)
-            results = _run_check(session, check, cases)
-            verdicts = [_judge(check, c, s, p, m)
-                        for c, (s, p), m in zip(cases, results, memos, strict=True)]
-            result["checks"].append(_summarise(check, cases, results, verdicts, memos))
+            result["checks"].append(_judged(check, cases, memos,
+                                            _run_check(session, check, cases)))
     finally:
         session.close()
     result["cells"] = [r for _, r in sorted(session.reports.items()) if not r["ok"]]

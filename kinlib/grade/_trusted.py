@@ -18,7 +18,7 @@ import warnings
 from collections.abc import Callable, Mapping
 
 from ._checks import shared_cases
-from ._grader import _judge, _summarise, load_assignment, not_graded
+from ._grader import _judged, load_assignment, not_graded
 from ._wire import WireError, decode, dumps, encode, loads
 from ._worker import _error_text, _where
 
@@ -62,9 +62,7 @@ def judge_functions(functions: Mapping[str, Callable], assignment: str, *,
             answers = [("missing", what)] * len(cases)
         else:
             answers = [_answer(fn, c) for c in cases]
-        verdicts = [_judge(check, c, s, p, m)
-                    for c, (s, p), m in zip(cases, answers, memos, strict=True)]
-        result["checks"].append(_summarise(check, cases, answers, verdicts, memos))
+        result["checks"].append(_judged(check, cases, memos, answers))
     result["score"] = round(sum(c["score"] for c in result["checks"]), 2)
     result["graded"] = True
     return result
