@@ -327,34 +327,36 @@ def wait_for_kernel(compiled: bool | None, n: int, least: int = WAIT_MIN) -> boo
     return bool(compiled) or n >= least
 
 
+def _run_chain_kernel(name: str, q: np.ndarray, args: tuple, compiled: bool | None):
+    """The chain kernel ``name`` on ``q`` and ``args`` (the chain's tables), in threads for
+    a large batch; None when the caller is to take its numpy path (``compiled``: as for
+    :func:`run_chain`)."""
+    if compiled is False:
+        return None
+    q = writable(q)
+    n = q.shape[0]
+    fn = kernel(name, lambda: (q[:0], *args), wait=wait_for_kernel(compiled, n))
+    if fn is None:
+        return None
+    if n < PARALLEL_MIN:  # (the common case: no slicing, no threads)
+        return fn(q, *args)
+    return in_threads(fn, n, lambda a, b: (q[a:b], *args))
+
+
 def run_chain(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None):
     """Pose (N, 4, 4) at the end of the chain. ``compiled``: None, the compiled kernel if
     it is ready (see :func:`kernel`); True, the compiled kernel (waiting for it; numpy
     only without numba); False, the numpy path."""
-    if compiled is not False:
-        q = writable(q)
-        n, args = q.shape[0], (chain.ints, chain.floats, chain.D)
-        fn = kernel("chain", lambda: (q[:0], *args), wait=wait_for_kernel(compiled, n))
-        if fn is not None:
-            if n < PARALLEL_MIN:  # (the common case: no slicing, no threads)
-                return fn(q, *args)
-            return in_threads(fn, n, lambda a, b: (q[a:b], *args))
-    return _chain_numpy(chain, q)
+    out = _run_chain_kernel("chain", q, (chain.ints, chain.floats, chain.D), compiled)
+    return _chain_numpy(chain, q) if out is None else out
 
 
 def run_chain_jacobian(chain: ChainTable, q: np.ndarray, *, compiled: bool | None = None):
     """``(T (N, 4, 4), J (N, 6, dof))`` at the end of the chain (``compiled``: as for
     :func:`run_chain`)."""
-    if compiled is not False:
-        q = writable(q)
-        n, args = q.shape[0], (chain.ints, chain.floats, chain.D, q.shape[1])
-        fn = kernel("chain_jacobian", lambda: (q[:0], *args),
-                    wait=wait_for_kernel(compiled, n))
-        if fn is not None:
-            if n < PARALLEL_MIN:
-                return fn(q, *args)
-            return in_threads(fn, n, lambda a, b: (q[a:b], *args))
-    return _chain_numpy(chain, q, q.shape[1])
+    out = _run_chain_kernel("chain_jacobian", q,
+                            (chain.ints, chain.floats, chain.D, q.shape[1]), compiled)
+    return _chain_numpy(chain, q, q.shape[1]) if out is None else out
 
 
 def run(table: FKTable, q: np.ndarray, sel: np.ndarray, *, compiled: bool | None = None):
