@@ -11,13 +11,13 @@ import nbformat
 import pytest
 
 from kinlib import KinlibError
+from kinlib.plot._player import offline_player
 from kinlib.site import (
     MARKER,
     build_site,
     ensure_mathjax,
     execute_notebook,
     index_html,
-    offline_players,
     outline,
     read_executed,
 )
@@ -108,7 +108,7 @@ def test_animation_players_lose_the_icon_font_but_keep_their_buttons():
             '<button onclick="a.reverse_animation()"><i class="fa fa-play fa-flip-horizontal">'
             '</i></button><button onclick="a.play_animation()"><i class="fa fa-play"></i>'
             '</button><button><i class="fa fa-pause"></i></button>')
-    out = offline_players(page)
+    out = offline_player(page)
     assert "font-awesome" not in out and "https://" not in out and "fa-" not in out
     assert out.count('class="kl-icon"') == 3
     assert "◀" in out and "▶" in out and "❚❚" in out

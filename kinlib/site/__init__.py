@@ -44,7 +44,7 @@ from ..plot._player import offline_player
 from ._widgets import freeze_widgets, with_viewer
 
 __all__ = ["PageInfo", "outline", "build_site", "execute_notebook", "read_executed",
-           "export_page", "offline_players", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
+           "export_page", "ensure_mathjax", "index_html", "MARKER", "PARTS"]
 
 #: the page template's folder, shipped with the package
 TEMPLATES = resources.files(__package__) / "templates"
@@ -219,23 +219,12 @@ def export_page(nb, page: PageInfo, pages: list[PageInfo]) -> str:
                  "kinlib": {"mathjax_head": MATHJAX_HEAD, "css": CSS,
                             "nav": _nav(pages, here)}}
     body, _ = exporter.from_notebook_node(nb, resources=resources)
-    body = offline_players(body)
+    body = offline_player(body)  # (kl.plot.animate's players are so already: any other)
     body = with_viewer(body)  # the viewer, once per page, after the content
     leaks = re.findall(r'<(?:script|link)[^>]+(?:src|href)="(https?:[^"]+)"', body)
     if leaks:
         raise KinlibError(f"{page.name}: the page would load {leaks[0]} from the network")
     return body
-
-
-def offline_players(page: str) -> str:
-    """``page`` with matplotlib animation players that need no icon font (the players
-    ``kinlib.plot.animate`` makes are so already; this catches any other): see
-    :func:`kinlib.plot._player.offline_player`.
-
-    >>> offline_players('<button title="Play"><i class="fa fa-play"></i></button>')
-    '<button title="Play"><span class="kl-icon">▶</span></button>'
-    """
-    return offline_player(page)
 
 
 def _error_output(cell) -> dict | None:
