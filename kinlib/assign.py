@@ -21,10 +21,14 @@ an answer, a derivation that is an exercise's solution. It is left out of the st
 edition, and no other cell may read a name it sets.
 
 Outputs and execution counts are dropped. ``--check`` writes nothing and exits 1 if an
-edition is missing or stale. The folders are found under ``--root`` (default: the current
-directory, so ``make release`` runs it from the repository's root); exit status 2 when there
-is nothing to release there, a notebook is refused, or the course's tools are not installed
-(``pip install 'kinlib[course]'``: nbformat, nbclient, nbconvert; see
+edition is missing or stale. ``--student-repo DIR`` writes what students receive, a
+repository of its own (:mod:`kinlib.student`): the student editions (which must be the
+committed ones: it refuses while they are stale), a README for students, kinlib's wheel and
+the environment repo2docker builds for Binder or a JupyterHub. The folders are found
+under ``--root`` (default: the current directory, so ``make release`` runs it from the
+repository's root); exit status 2 when there is nothing to release there, a notebook or a
+student repository's folder is refused, or the course's tools are not installed (``pip
+install 'kinlib[course]'``: nbformat, nbclient, nbconvert; see
 :func:`kinlib._optional.course_import`).
 
 >>> print(release_source('''def f(x):
@@ -52,15 +56,18 @@ from pathlib import Path
 
 from ._optional import course_import
 from .errors import KinlibError
+from .student import ASSIGNMENTS, NOTEBOOKS, write_student_repo
 
 __all__ = ["release_source", "release_notebook", "assigned_names", "used_names", "main",
-           "BEGIN", "END", "EDITIONS", "SOLUTION_TAG"]
+           "student_repo", "BEGIN", "END", "EDITIONS", "STUDENT_FOLDERS", "SOLUTION_TAG"]
 
 BEGIN = "### BEGIN SOLUTION"
 END = "### END SOLUTION"
 SOLUTION_TAG = "solution"  # a cell with this tag is in the instructor edition only
 #: (source folder, student edition folder), relative to the repository (``--root``)
 EDITIONS = (("assignments/source", "assignments/release"), ("instructor", "notebooks"))
+#: (source folder, the student repository's folder it is released into)
+STUDENT_FOLDERS = (("assignments/source", ASSIGNMENTS), ("instructor", NOTEBOOKS))
 #: what installs the course's tools (kinlib.assign, kinlib.grade, kinlib.site) beside kinlib
 #: the distributions of the course's tools, as pyproject.toml's ``course`` extra lists them
 
@@ -181,37 +188,90 @@ def _pairs(root: Path):
     return pairs
 
 
-def main(argv=None) -> int:
-    """The command line (see the module's text); 0 done, 1 stale (``--check``). Bad input
-    (nothing to release, a notebook refused, nbformat missing) raises :class:`KinlibError`;
-    ``python -m kinlib.assign`` prints it and exits 2."""
-    p = argparse.ArgumentParser(prog="python -m kinlib.assign", description=__doc__.split(
-        "\n\n")[0])
-    p.add_argument("--root", type=Path, default=Path("."),
-                   help="the course repository holding instructor/ and assignments/source/ "
-                        "(default: the current directory)")
-    p.add_argument("--check", action="store_true",
-                   help="write nothing; exit 1 if a student edition is missing or out of date")
-    args = p.parse_args(argv)
-    pairs = _pairs(args.root)
-    nbformat = course_import("nbformat", "python -m kinlib.assign")
-    stale = []
+def _released(pairs, nbformat) -> list[tuple[Path, Path, str]]:
+    """(source, student edition, the student edition's text) of each pair."""
+    out = []
     for src, dst in pairs:
         try:
             text = nbformat.writes(release_notebook(nbformat.read(src, as_version=4))) + "\n"
         except KinlibError as exc:
             raise KinlibError(f"{src}: {exc}") from None
-        if dst.exists() and dst.read_text(encoding="utf-8") == text:
-            continue
-        stale.append(dst)
-        if not args.check:
+        out.append((src, dst, text))
+    return out
+
+
+def _stale(released) -> list[Path]:
+    return [dst for _, dst, text in released
+            if not (dst.exists() and dst.read_text(encoding="utf-8") == text)]
+
+
+def student_repo(root: Path, dest: Path, repo_url: str | None = None):
+    """Write the student repository (:func:`kinlib.student.write_student_repo`) into
+    ``dest`` from the course repository ``root``: the student editions as
+    :func:`release_notebook` makes them, which must be the ones committed in ``root``
+    (else a :class:`KinlibError`: the release publishes what the tests ran)."""
+    pairs = _pairs(root)
+    released = _released(pairs, course_import("nbformat", "python -m kinlib.assign"))
+    stale = _stale(released)
+    if stale:
+        raise KinlibError("the student editions in the course repository are missing or out "
+                          "of date (" + ", ".join(str(s) for s in stale) + "): run `make "
+                          "release` (python -m kinlib.assign) and commit them first, so that "
+                          "the student repository gets the notebooks the tests ran")
+    into, folders = dict(STUDENT_FOLDERS), {NOTEBOOKS: {}, ASSIGNMENTS: {}}
+    for src, _, text in released:
+        folders[into[src.parent.relative_to(root).as_posix()]][src.name] = text
+    return write_student_repo(root, dest, notebooks=folders[NOTEBOOKS],
+                              assignments=folders[ASSIGNMENTS], solution_marker=BEGIN,
+                              repo_url=repo_url)
+
+
+def main(argv=None) -> int:
+    """The command line (see the module's text); 0 done, 1 stale (``--check``). Bad input
+    (nothing to release, a notebook refused, nbformat missing, a student repository
+    refused) raises :class:`KinlibError`; ``python -m kinlib.assign`` prints it and exits
+    2."""
+    p = argparse.ArgumentParser(prog="python -m kinlib.assign", description=__doc__.split(
+        "\n\n")[0])
+    p.add_argument("--root", type=Path, default=Path("."),
+                   help="the course repository holding instructor/ and assignments/source/ "
+                        "(default: the current directory)")
+    mode = p.add_mutually_exclusive_group()
+    mode.add_argument("--check", action="store_true",
+                      help="write nothing; exit 1 if a student edition is missing or out of "
+                           "date")
+    mode.add_argument("--student-repo", type=Path, metavar="DIR",
+                      help="write what students receive into DIR, a repository of its own "
+                           "(new, empty, or a clone of the one published before): the "
+                           "student editions, a README, kinlib's wheel and the Binder "
+                           "environment (see kinlib.student)")
+    p.add_argument("--repo-url", metavar="URL",
+                   help="with --student-repo: the student repository's https address, for "
+                        "its README's Binder link (default: the previous release's)")
+    args = p.parse_args(argv)
+    if args.repo_url and not args.student_repo:
+        p.error("--repo-url goes with --student-repo")
+    if args.student_repo:
+        done = student_repo(args.root, args.student_repo, args.repo_url)
+        print(f"student repository {done.dest}: {len(done.files)} files, "
+              f"{len(done.changed)} written, {len(done.removed)} removed"
+              + "".join(f"\n  wrote {rel}" for rel in done.changed)
+              + "".join(f"\n  removed {rel}" for rel in done.removed))
+        return 0
+    pairs = _pairs(args.root)
+    released = _released(pairs, course_import("nbformat", "python -m kinlib.assign"))
+    stale = _stale(released)
+    if args.check:
+        if stale:
+            print("out of date (run `python -m kinlib.assign`): "
+                  + ", ".join(str(s) for s in stale), file=sys.stderr)
+            return 1
+        return 0
+    for _, dst, text in released:
+        if dst in stale:
             dst.parent.mkdir(parents=True, exist_ok=True)
             dst.write_text(text, encoding="utf-8")
             print(f"wrote {dst}")
-    if args.check and stale:
-        print("out of date (run `python -m kinlib.assign`): "
-              + ", ".join(str(s) for s in stale), file=sys.stderr)
-        return 1
     return 0
 
 
