@@ -91,6 +91,7 @@ class Sandbox:
     python: str  # the base interpreter (never a virtual environment's)
     options: tuple[str, ...]  # bwrap's file-system and namespace options
     as_root: bool  # the grader is root: no user namespace, the worker drops to an unprivileged uid
+    tier = "bubblewrap"  # (the isolation tier, as results name it: kinlib.grade._tiers)
 
     def argv(self, worker_args: list[str]) -> list[str]:
         """bwrap's command line running the worker (inside) with ``worker_args``."""

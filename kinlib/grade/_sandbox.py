@@ -31,6 +31,7 @@ from pathlib import Path
 
 from .._process import die_with as _die_with
 from ._bwrap import LIB_DIR, NPROC, Sandbox, worker_env
+from ._container import Container
 from ._wire import MAX_LINE, WireError, dumps, loads
 
 __all__ = ["Worker", "WorkerDied", "WorkerTimeout", "BLOCKED"]
@@ -64,18 +65,22 @@ class Worker:
     """One student process. Use :meth:`request` / :meth:`receive`; :meth:`kill` always.
 
     ``sandbox``: a :class:`~kinlib.grade._bwrap.Sandbox` (see
-    :func:`~kinlib.grade._bwrap.find_sandbox`), or None for a plain child process with the
-    grader's own rights (the unsandboxed mode: no boundary at all).
+    :func:`~kinlib.grade._bwrap.find_sandbox`), a
+    :class:`~kinlib.grade._container.Container` (the container tier), or None for a plain
+    child process with the grader's own rights (the unsandboxed mode: no boundary at all).
     """
 
-    def __init__(self, *, sandbox: Sandbox | None, memory_mb: int = 4096, cpu_s: int = 600,
-                 blocked=BLOCKED, nproc: int = NPROC):
+    def __init__(self, *, sandbox: Sandbox | Container | None, memory_mb: int = 4096,
+                 cpu_s: int = 600, blocked=BLOCKED, nproc: int = NPROC):
         self.sandbox = sandbox
         self.dir = None if sandbox is not None else tempfile.mkdtemp(prefix="kinlib-grade-")
+        self._launch = None  # the container tier's uid and working directory
         to_child_r, self._to_child = os.pipe()
         self._from_child, from_child_w = os.pipe()
         config = {"fds": [to_child_r, from_child_w], "blocked": list(blocked)}
-        if sandbox is not None:
+        if isinstance(sandbox, Container):
+            argv, cwd, env, self._launch = sandbox.launch(config, nproc)
+        elif sandbox is not None:
             config.update(path=[LIB_DIR], uid=sandbox.uid(), nproc=nproc)
             argv, cwd, env = sandbox.argv([json.dumps(config)]), "/", {}
         else:
@@ -93,6 +98,8 @@ class Worker:
                 os.close(fd)
             if self.dir is not None:
                 shutil.rmtree(self.dir, ignore_errors=True)
+            if self._launch is not None:
+                self.sandbox.cleanup(self._launch)
             raise
         os.close(to_child_r)
         os.close(from_child_w)
@@ -170,7 +177,8 @@ class Worker:
 
     # -- ending -----------------------------------------------------------------------------
     def kill(self) -> None:
-        """End the process group (SIGKILL), reap it, close the pipes. Idempotent."""
+        """End the process group (SIGKILL) and, in the container tier, every process of
+        its uid; reap it. Idempotent."""
         if self.alive:
             self.alive = False
             try:
@@ -181,6 +189,8 @@ class Worker:
                 self.proc.wait(timeout=10.0)
             except subprocess.TimeoutExpired:
                 pass
+            if self._launch is not None:  # what it started in sessions of its own too
+                self.sandbox.end(self._launch)
 
     def close(self) -> None:
         """Kill the process and remove its working directory."""
@@ -195,6 +205,9 @@ class Worker:
                     pass
         if self.dir is not None:
             shutil.rmtree(self.dir, ignore_errors=True)
+        if self._launch is not None:
+            self.sandbox.cleanup(self._launch)
+            self._launch = None
 
     def __enter__(self) -> Worker:
         return self

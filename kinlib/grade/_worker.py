@@ -4,9 +4,12 @@ Started by :mod:`kinlib.grade._sandbox` as ``python -I [-S] path/to/_worker.py C
 ``CONFIG`` a JSON object: ``fds`` (two pipe file descriptors: requests arrive on the first,
 replies leave on the second, one JSON line each, :mod:`kinlib.grade._wire`), ``blocked``
 (modules the submission may not import), ``path`` (directories put first on ``sys.path``:
-the sandbox's libraries), ``uid`` (drop to this uid first: the sandbox run by root) and
-``nproc`` (the cap on processes). The student's own printing goes to ``/dev/null`` (fd 1
-and 2 are redirected before any of their code runs), so it cannot be mistaken for a reply.
+the sandbox's libraries), ``uid`` (drop to this uid first: the sandbox run by root),
+``nproc`` (the cap on processes) and, in the container tier, ``confine`` (what
+:mod:`kinlib.grade._confine` applies before anything else: the uid, limits, Landlock and
+seccomp; if that fails the process exits, status 72, having run nothing). The student's
+own printing goes to ``/dev/null`` (fd 1 and 2 are redirected before any of their code
+runs), so it cannot be mistaken for a reply.
 
 Requests and replies:
 
@@ -17,6 +20,9 @@ Requests and replies:
   "what": ...}`` if ``f`` is not a function of the submission, else one ``{"ev": "case",
   "i": k, "ok": bool, "value" | "error": ...}`` per case; finally ``{"ev": "call_done"}``;
   every reply carries the call's ``id``, a random token (the grader drops other replies).
+- ``{"op": "probe", "read": [...], "write": [...], "imports": [...]}`` (the container tier
+  only, before any cell) → ``{"ev": "probe", ...}``: what the confined process can still
+  do (:func:`kinlib.grade._confine.probe`).
 - ``{"op": "exit"}``.
 
 Nothing here is trusted by the grader: it compares the values itself, in its own process.
@@ -105,10 +111,30 @@ class _Blocker:
         return None
 
 
+def _load_confine():
+    """:mod:`kinlib.grade._confine`, loaded by path (the container tier)."""
+    spec = importlib.util.spec_from_file_location(
+        "_kinlib_confine",
+        os.path.join(os.path.dirname(os.path.abspath(__file__)), "_confine.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def main(config: dict) -> None:
+    here = os.path.dirname(os.path.abspath(__file__))
     sys.path[:0] = list(config.get("path", ()))
     _load_wire()  # (before dropping root: the worker's files may be root's alone)
-    _become(config.get("uid"), config.get("nproc"))
+    confine = None
+    if config.get("confine"):  # the container tier: confined here, before any cell runs
+        sys.path[:] = [p for p in sys.path if os.path.abspath(p) != here]
+        confine = _load_confine()
+        try:
+            confine.confine(config["confine"])
+        except BaseException:
+            os._exit(72)  # never run a submission unconfined
+    else:
+        _become(config.get("uid"), config.get("nproc"))
     fd_in, fd_out = config["fds"]
     names = list(config.get("blocked", ()))
     for n in list(sys.modules):
@@ -139,6 +165,8 @@ def main(config: dict) -> None:
             _cells(namespace, request["cells"], replies)
         elif op == "call":
             _call(namespace, request["name"], request["cases"], request.get("id"), replies)
+        elif op == "probe" and confine is not None:  # what the confinement still allows
+            replies.write(dumps({"ev": "probe", **confine.probe(request)}))
         else:
             replies.write(dumps({"ev": "error", "error": f"unknown op {op!r}"}))
 

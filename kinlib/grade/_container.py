@@ -1,0 +1,238 @@
+"""The container tier: isolation for a root grader where bubblewrap cannot make namespaces.
+
+Docker's default profile, which Gradescope's autograder and most CI containers run under,
+refuses new namespaces to a root process (its seccomp profile and the missing
+``CAP_SYS_ADMIN``), so bwrap cannot start there. What such a container still lets root do
+is what Gradescope's own guidance recommends: run the student's code as another user. This
+tier does that and more; each submission's process (:mod:`kinlib.grade._confine` applies
+it, before any of the submission's code runs):
+
+- runs as a fresh unprivileged uid and gid that own nothing, with no supplementary groups:
+  it cannot signal, trace or read the memory of the grader or of another submission, nor
+  read or write a file except as "others" may;
+- has the same resource limits as in the bubblewrap sandbox (memory, CPU time, file size,
+  processes and open files of its uid, no core files) and is the out-of-memory killer's
+  first choice;
+- where the kernel has Landlock (Linux 5.13+, allowed by Docker's default seccomp profile
+  since 2022), sees files only as in the bubblewrap sandbox: the Python runtime and the
+  allowed libraries read-only (the runtime's ``site-packages`` left out), its own working
+  directory writable, nothing else (not ``/proc``, not ``/tmp``, not the grader's files);
+  from Landlock ABI 4 it cannot ``bind`` or ``connect`` TCP sockets, from ABI 6 not signal
+  or reach abstract Unix sockets outside itself;
+- on x86-64 and AArch64, a seccomp filter refuses every socket but ``AF_UNIX``, io_uring,
+  namespaces, mounts, ``ptrace``, ``bpf`` and the kernel keyring;
+- ends with everything it started: when the process ends, every process of its uid is
+  killed (:func:`sweep`), and what it left in the world-writable directories is removed.
+
+Without Landlock, files are protected by their permissions only. Before grading, a probe
+(:func:`kinlib.grade._tiers.find_isolation`, :func:`judge_probe`) starts one confined
+process and proves the promises hold here: it is not root, cannot open the grader's
+kinlib (the reference, the grader's code) or the paths the caller names (the secret, the
+results, other hand-ins), cannot create a file where results go, cannot make an IPv4 or
+IPv6 socket (where seccomp is available), and can import the libraries a submission may
+use. If any fails, the tier is refused, naming the
+fix (``chmod -R go-rwx``, a world-readable Python).
+
+What it does not give, unlike bubblewrap: a private ``/tmp`` or file-system view without
+Landlock, a PID namespace (the process can list other processes' command lines in
+``/proc`` where Landlock is missing), a bound on the number of files it writes in its own
+working directory (each at most 64 MiB), or a memory bound on the sandbox as a whole
+(memory is limited per process).
+"""
+
+from __future__ import annotations
+
+import atexit
+import functools
+import json
+import os
+import secrets
+import shutil
+import stat
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from . import _confine
+from ._bwrap import FIX, SandboxUnavailable, _hidden_dirs, _library_binds, worker_env
+
+__all__ = ["Container", "container", "probe_request", "judge_probe", "refuse_unless_root",
+           "sweep", "NOFILE"]
+
+#: open files of a submission's process
+NOFILE = 1024
+#: devices a submission's process may read and write
+DEVICES = ("/dev/null", "/dev/zero", "/dev/full", "/dev/random", "/dev/urandom")
+#: world-writable directories emptied of what a submission's uid left there
+SHARED_DIRS = ("/tmp", "/var/tmp", "/dev/shm")
+_SWEEP = ("import os, signal, time\n"
+          "for _ in range(200):\n"
+          "    try:\n"
+          "        os.kill(-1, signal.SIGKILL)\n"
+          "    except ProcessLookupError:\n"
+          "        break\n"
+          "    time.sleep(0.005)\n")
+
+
+@dataclass(frozen=True)
+class Launch:
+    """One confined process as started: its uid and working directory."""
+
+    uid: int
+    workdir: str
+
+
+@dataclass(frozen=True)
+class Container:
+    """How to start one process in the container tier (see the module's text)."""
+
+    python: str  # the base interpreter, readable by every user
+    lib_dir: str  # links to the libraries a submission may use
+    read: tuple[str, ...]  # Landlock's read-only rules
+    landlock: int  # the Landlock ABI used (0: none)
+    seccomp: str | None  # the architecture of the seccomp filter (None: none)
+    workroot: str  # where each process's working directory is made
+    tier = "container"
+
+    def describe(self) -> str:
+        what = ["unprivileged uid", "rlimits"]
+        if self.landlock:
+            covers = "files" + (", TCP" if self.landlock >= 4 else "") + \
+                (", signals" if self.landlock >= 6 else "")
+            what.append(f"Landlock ABI {self.landlock} ({covers})")
+        else:
+            what.append("file permissions (no Landlock)")
+        what.append("seccomp (no network sockets)" if self.seccomp else "no seccomp filter")
+        return "container tier: " + ", ".join(what)
+
+    def launch(self, config: dict, nproc: int) -> tuple[list[str], str, dict, Launch]:
+        """(argv, cwd, env, launch) of a worker with ``config`` (its pipes, blocked
+        modules), confined to a fresh uid and working directory."""
+        uid = 1_000_000_000 + secrets.randbelow(1_000_000_000)
+        workdir = tempfile.mkdtemp(prefix="w", dir=self.workroot)
+        os.chown(workdir, uid, uid)
+        os.chmod(workdir, 0o700)
+        config = {**config, "path": [self.lib_dir], "confine": {
+            "uid": uid, "parent": os.getpid(), "nproc": nproc, "nofile": NOFILE,
+            "landlock": self.landlock, "read": [*self.read, self.lib_dir],
+            "write": [workdir], "devices": list(DEVICES), "seccomp": self.seccomp}}
+        worker = str(Path(__file__).resolve().with_name("_worker.py"))
+        env = {**worker_env(workdir, "/usr/bin:/bin"), "TMPDIR": workdir,
+               "MPLCONFIGDIR": os.path.join(workdir, ".matplotlib")}
+        argv = [self.python, "-I", "-S", worker, json.dumps(config)]
+        return argv, workdir, env, Launch(uid, workdir)
+
+    def end(self, launch: Launch) -> None:
+        """Kill every process of the launch's uid (:func:`sweep`)."""
+        sweep(launch.uid, self.python)
+
+    def cleanup(self, launch: Launch) -> None:
+        """Remove the launch's working directory and what its uid left in the shared
+        directories (after :meth:`end`)."""
+        shutil.rmtree(launch.workdir, ignore_errors=True)
+        for folder in SHARED_DIRS:
+            try:
+                entries = list(os.scandir(folder))
+            except OSError:
+                continue
+            for entry in entries:
+                try:
+                    st = entry.stat(follow_symlinks=False)
+                    if st.st_uid != launch.uid:
+                        continue
+                    if stat.S_ISDIR(st.st_mode):
+                        shutil.rmtree(entry.path, ignore_errors=True)
+                    else:
+                        os.unlink(entry.path)
+                except OSError:
+                    pass
+
+
+def sweep(uid: int, python: str = sys.executable) -> None:
+    """Kill every process of ``uid``: a process of that uid (made for the purpose, root
+    only) sends SIGKILL to every process it may signal, until there are none."""
+    try:
+        subprocess.run([python, "-I", "-S", "-c", _SWEEP], user=uid, group=uid,
+                       extra_groups=[], env={}, cwd="/", stdin=subprocess.DEVNULL,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=30)
+    except (OSError, subprocess.SubprocessError):
+        pass
+
+
+def _folder(prefix: str, mode: int) -> str:
+    base = "/tmp" if os.path.isdir("/tmp") else tempfile.gettempdir()
+    path = tempfile.mkdtemp(prefix=prefix, dir=base)
+    os.chmod(path, mode)
+    atexit.register(shutil.rmtree, path, True)
+    return path
+
+
+@functools.lru_cache(maxsize=4)
+def _layout(blocked: tuple[str, ...]) -> tuple[str, str, tuple[str, ...], str]:
+    """(interpreter, library folder, read rules, work root): made once per process."""
+    python = os.path.realpath(getattr(sys, "_base_executable", None) or sys.executable)
+    prefix = os.path.realpath(sys.base_prefix)
+    lib_dir = _folder("kinlib-lib-", 0o755)
+    libraries = []
+    for src, dst in _library_binds(("numpy", "sympy", "matplotlib"), blocked):
+        os.symlink(src, os.path.join(lib_dir, os.path.basename(dst)))
+        libraries.append(src)
+    trees = ["/usr", prefix, os.path.dirname(python), "/lib", "/lib64", "/lib32", "/bin",
+             "/etc/ld.so.cache", "/etc/localtime"]
+    hidden = _hidden_dirs({prefix, "/usr", "/usr/local"})
+    read = tuple(_confine.read_rules(trees, hidden)) + tuple(sorted(set(libraries)))
+    return python, lib_dir, read, _folder("kinlib-work-", 0o711)
+
+
+def container(blocked=()) -> Container:
+    """This machine's container tier for a grader blocking ``blocked``, not yet probed
+    (:func:`kinlib.grade._tiers.find_isolation` probes it)."""
+    python, lib_dir, rules, workroot = _layout(tuple(blocked))
+    return Container(python, lib_dir, rules, _confine.landlock_abi(), _confine.seccomp_arch(),
+                     workroot)
+
+
+def probe_request(read=(), write=()) -> dict:
+    """What the probe asks a confined process: kinlib (the reference, the grader's code) and
+    ``read`` must not open, kinlib and ``write`` must not take a new file, the libraries a
+    submission may use must import."""
+    here = str(Path(__file__).resolve().parents[1])
+    return {"op": "probe", "read": [here, *read], "write": [here, *write],
+            "imports": ["numpy", "sympy", "matplotlib"]}
+
+
+def judge_probe(container: Container, reply: dict, why: str) -> None:
+    """Raise :class:`SandboxUnavailable`, naming each problem and its fix, unless the
+    probe's ``reply`` shows every promise of the tier holding."""
+    problems = []
+    if reply.get("ev") != "probe":
+        problems.append(f"the confined process answered {str(reply)[:200]}")
+    if reply.get("uid") in (0, None) or reply.get("euid") in (0, None):
+        problems.append("the submission's process is still root")
+    if reply.get("imports"):
+        problems.append("the libraries a submission may use cannot be imported by an "
+                        f"unprivileged user: {'; '.join(map(str, reply['imports']))} (the "
+                        f"Python runtime, {container.python}, and the libraries must be "
+                        "readable by every user)")
+    for key, how in (("readable", "can be read"), ("writable", "can be written")):
+        if reply.get(key):
+            paths = " ".join(map(str, reply[key]))
+            problems.append(f"{paths} {how} by the submission's unprivileged user (fix: "
+                            f"chmod -R go-rwx {paths})")
+    if container.seccomp and reply.get("network"):
+        problems.append(f"network sockets were not refused ({reply['network']})")
+    if problems:
+        raise SandboxUnavailable(f"bubblewrap cannot run here ({why}), and the container "
+                                 f"tier cannot hold here: {'; '.join(problems)}. {FIX}")
+
+
+def refuse_unless_root(why: str) -> None:
+    """The container tier needs root (to hand each submission a uid of its own)."""
+    if not sys.platform.startswith("linux"):
+        raise SandboxUnavailable(f"no sandbox on {sys.platform}; {FIX}")
+    if os.geteuid() != 0:
+        raise SandboxUnavailable(
+            f"bubblewrap cannot run here ({why}); the container tier, which runs "
+            "submissions as another user, needs the grader to run as root. " + FIX)
