@@ -21,9 +21,11 @@ from concurrent.futures import ThreadPoolExecutor, as_completed
 from pathlib import Path
 
 from ..errors import KinlibError
-from ._bwrap import Sandbox, find_sandbox
+from ._bwrap import Sandbox
 from ._checks import Assignment, Check, Verdict, fmt, once_per_case, shared_cases
+from ._container import Container
 from ._sandbox import BLOCKED, Worker, WorkerDied, WorkerTimeout
+from ._tiers import find_isolation
 from ._wire import WireError, decode, encode
 
 __all__ = ["grade", "grade_many", "format_report", "load_assignment", "assignment_names",
@@ -140,7 +142,8 @@ def _which(nb, path: Path, assignment: str | None) -> str:
 class _Session:
     """The student's process for one submission, restarted when it hangs or dies."""
 
-    def __init__(self, cells, cell_timeout: float, memory_mb: int, sandbox: Sandbox | None,
+    def __init__(self, cells, cell_timeout: float, memory_mb: int,
+                 sandbox: Sandbox | Container | None,
                  budget: float):
         self.cells, self.cell_timeout, self.memory_mb = cells, cell_timeout, memory_mb
         self.sandbox, self.budget = sandbox, budget
@@ -396,24 +399,32 @@ def not_graded(submission, assignment: str | None, error: str | None,
 def grade(submission, assignment: str | None = None, *, seed: int = 0,
           secret: str | bytes | None = None, cell_timeout: float = 60.0,
           memory_mb: int = 4096, submission_timeout: float = SUBMISSION_TIMEOUT,
-          unsandboxed: bool = False) -> GradeResult:
+          unsandboxed: bool = False, sandbox: str = "auto", unreadable=(),
+          unwritable=()) -> GradeResult:
     """Grade one notebook: a :class:`GradeResult`, the JSON-ready dict of
     :mod:`kinlib.grade` with ``.success`` (graded) and ``.to_json()``.
 
     The cases come from ``seed`` (public: a student can run the same ones), or, if
     ``secret`` is given, from the instructor's secret (:func:`cases_seed`). The submission's
-    code runs in the sandbox (:mod:`kinlib.grade._bwrap`); with no sandbox on this machine
-    this raises :class:`~kinlib.grade._bwrap.SandboxUnavailable` (naming the fix) unless
-    ``unsandboxed=True``, which marks the result (``"sandbox": null`` and a ``warning``).
+    code runs isolated (:mod:`kinlib.grade._tiers`): in the bubblewrap sandbox where bwrap
+    can run, else, for a root grader in a container, in the container tier (``sandbox``:
+    ``"auto"``, ``"bubblewrap"`` or ``"container"``; ``unreadable`` and ``unwritable``: the
+    paths the container tier must prove hidden, besides kinlib). The result names the tier
+    (``"tier"``) and what it did (``"sandbox"``). With neither this raises
+    :class:`~kinlib.grade._bwrap.SandboxUnavailable` (naming the fix) unless
+    ``unsandboxed=True``, which marks the result (``"sandbox": null``, ``"tier": null`` and a
+    ``warning``).
 
     Never raises for anything the submission does. If the file cannot be read or its
     assignment cannot be told, ``graded`` is False and ``error`` says why.
     """
-    sandbox = None if unsandboxed else find_sandbox(BLOCKED)
+    isolation = None if unsandboxed else find_isolation(BLOCKED, sandbox, unreadable,
+                                                         unwritable)
     path = Path(submission)
     result = not_graded(path, assignment, None)
-    result["sandbox"] = None if sandbox is None else sandbox.describe()
-    if sandbox is None:
+    result["sandbox"] = None if isolation is None else isolation.describe()
+    result["tier"] = None if isolation is None else isolation.tier
+    if isolation is None:
         result["warning"] = UNSANDBOXED
     try:
         nb = _read(path)
@@ -427,7 +438,7 @@ def grade(submission, assignment: str | None = None, *, seed: int = 0,
                   cases="secret" if secret is not None else f"public (seed {seed})")
     cells = [[i, c["source"]] for i, c in enumerate(nb["cells"])
              if c["cell_type"] == "code" and c["source"] is not None]  # (no source: left out)
-    session = _Session(cells, cell_timeout, memory_mb, sandbox, submission_timeout)
+    session = _Session(cells, cell_timeout, memory_mb, isolation, submission_timeout)
     try:
         for check in spec.checks:
             cases, memos = shared_cases(name, check, seed)
@@ -453,7 +464,8 @@ def grade_many(submissions, assignment: str | None = None, *, jobs: int | None =
     """
     paths = list(submissions)
     if not kwargs.get("unsandboxed"):
-        find_sandbox(BLOCKED)
+        find_isolation(BLOCKED, kwargs.get("sandbox", "auto"), kwargs.get("unreadable", ()),
+                       kwargs.get("unwritable", ()))
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(paths) or 1))
 
     def one(path):  # one submission's failure never loses another's result
