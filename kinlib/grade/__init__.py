@@ -3,12 +3,15 @@
 Command line::
 
     python -m kinlib.grade SUBMISSION.ipynb [MORE.ipynb ...] [--json] [--jobs N]
+    python -m kinlib.grade --csv grades.csv --report class.html --secret-file S hand-ins/*/*.ipynb
+    python -m kinlib.grade --self-check my_notebook.ipynb     # a student, as practice
 
 Python::
 
     from kinlib.grade import grade, grade_many, format_report
     result = grade("alice/01_rotations.ipynb")
     print(format_report(result))
+    print(format_report(self_check("01_rotations.ipynb")))  # a student's practice run
 
 Each submission runs in its own process inside a bubblewrap sandbox (no kinlib, no network,
 no other files, its own PID namespace, never root: :mod:`kinlib.grade._bwrap`), with memory,
@@ -18,7 +21,9 @@ submission (:mod:`kinlib.grade._sandbox`). Without a sandbox the grader refuses 
 name and called on fixed and seeded random cases (public, ``seed``, or hidden, from the
 instructor's ``secret``); the answers come back as plain JSON data and are judged here,
 against kinlib, with diagnoses of the classic mistakes (:mod:`kinlib.grade._checks`).
-:mod:`kinlib.grade.gradescope` exports an assignment as a Gradescope autograder.
+:mod:`kinlib.grade.gradescope` exports an assignment as a Gradescope autograder;
+:mod:`kinlib.grade.gradebook` writes a class's scores as a CSV for Canvas's gradebook and
+:mod:`kinlib.grade.class_report` an HTML page of its most common mistakes.
 
 A result (:class:`GradeResult`: a dict with ``.success`` and ``.to_json()``) is a JSON-ready
 dict::
@@ -49,6 +54,7 @@ from ._grader import (
     load_assignment,
     summary,
 )
+from ._practice import self_check
 
 __all__ = ["GradeResult", "grade", "grade_many", "format_report", "load_assignment",
-           "assignment_names", "summary", "cases_seed", "SandboxUnavailable"]
+           "assignment_names", "summary", "cases_seed", "SandboxUnavailable", "self_check"]

@@ -19,8 +19,17 @@ from ._grader import (
     summary,
     to_json,
 )
+from ._practice import as_practice
+from .class_report import write_report
+from .gradebook import count_sources, identify, load_results, write_csv
 
 SECRET_ENV = "KINLIB_GRADE_SECRET"
+RESULT_SUFFIX = ".grade.json"
+PUBLIC_BATCH = (
+    "WARNING: grading {n} submissions on the PUBLIC cases (seed {seed}), which every student "
+    "can run with `python -m kinlib.grade --self-check`: a notebook that only looks its "
+    "answers up in a table of them, with no code, scores full marks (38/38 on assignment "
+    "01). Give --secret-file FILE (or set KINLIB_GRADE_SECRET) to grade on hidden cases.")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -28,8 +37,28 @@ def _parser() -> argparse.ArgumentParser:
         prog="python -m kinlib.grade",
         description="Grade assignment notebooks against kinlib, each in its own sandbox. "
                     "Exit status 0 when every submission could be graded (whatever its "
-                    "score), 2 otherwise.")
-    p.add_argument("submissions", nargs="+", type=Path, help="notebooks (.ipynb) to grade")
+                    "score), 2 otherwise. Students: --self-check NOTEBOOK grades your own "
+                    "notebook here, as practice.")
+    p.add_argument("submissions", nargs="+", type=Path,
+                   help="notebooks (.ipynb) to grade; result files written earlier by --out "
+                        f"(*{RESULT_SUFFIX}) are read instead, for --csv and --report "
+                        "without grading again")
+    p.add_argument("--self-check", action="store_true",
+                   help="for a student: grade your own notebook on this machine as practice, "
+                        "on the public cases, without a sandbox (your code still runs in a "
+                        "process of its own, with time limits) and without a secret; every "
+                        "report says PRACTICE; writes no result file unless --out is given")
+    p.add_argument("--csv", type=Path, default=None, metavar="FILE",
+                   help="write a gradebook CSV for Canvas's import: a row per student (from "
+                        "Canvas's file names, a folder per student, or the file name), the "
+                        "columns Student, ID, SIS User ID, SIS Login ID, Section, then each "
+                        "assignment's total and its functions' points; a Points Possible row")
+    p.add_argument("--csv-totals-only", action="store_true",
+                   help="in --csv, one column per assignment (its total), no functions")
+    p.add_argument("--report", type=Path, default=None, metavar="FILE.html",
+                   help="write the class report: per assignment and function, how many are "
+                        "right, the mean score and the most common mistakes with an example; "
+                        "one self-contained HTML page")
     p.add_argument("--assignment", choices=assignment_names(),
                    help="which assignment (default: the notebook's metadata or file name)")
     p.add_argument("--json", action="store_true",
@@ -37,7 +66,7 @@ def _parser() -> argparse.ArgumentParser:
                         "graded) instead of the text report; the summary goes to stderr")
     p.add_argument("--out", type=Path, default=None,
                    help="write each result as OUT/<name>.grade.json (default: next to "
-                        "each submission)")
+                        "each submission; with --self-check, none unless --out is given)")
     p.add_argument("--no-write", action="store_true", help="write no result files")
     p.add_argument("--jobs", "-j", type=int, default=None,
                    help="submissions graded at once (default: the number of CPUs)")
@@ -72,6 +101,47 @@ def _secret(args, parser) -> str | None:
     return env or None
 
 
+def _self_check_options(args, parser) -> None:
+    """A self-check is a student's practice: refuse what only an instructor's grading has."""
+    given = [name for name, on in (("--secret-file", args.secret_file is not None),
+                                   ("--seed", args.seed != 0), ("--csv", args.csv),
+                                   ("--report", args.report)) if on]
+    if given:
+        parser.error(f"--self-check runs the public cases as practice, for a student: not "
+                     f"with {', '.join(given)} (those are for grading a class)")
+    if any(p.name.endswith(RESULT_SUFFIX) for p in args.submissions):
+        parser.error(f"--self-check grades notebooks, not result files (*{RESULT_SUFFIX})")
+    if os.environ.get(SECRET_ENV):
+        print(f"note: {SECRET_ENV} is set but not used: a self-check runs the public cases",
+              file=sys.stderr)
+    if args.out is None:
+        args.no_write = True  # a student needs no result file
+
+
+def _instructor_files(args, results: list) -> bool:
+    """Write --csv and --report; whether everything could be written."""
+    ok = True
+    if args.csv is not None:
+        try:
+            problems = write_csv(results, args.csv, totals_only=args.csv_totals_only)
+        except OSError as exc:
+            print(f"could not write {args.csv}: {exc}", file=sys.stderr)
+            return False
+        for line in problems:
+            print(line, file=sys.stderr)
+        print(f"gradebook: {args.csv} (students told from "
+              f"{count_sources(identify(results)) or 'no submission'})", file=sys.stderr)
+    if args.report is not None:
+        try:
+            write_report(results, args.report)
+        except OSError as exc:
+            print(f"could not write {args.report}: {exc}", file=sys.stderr)
+            ok = False
+        else:
+            print(f"class report: {args.report}", file=sys.stderr)
+    return ok
+
+
 def _result_path(result: dict, out: Path | None, taken: set) -> Path:
     sub = Path(result["submission"])
     folder = out if out is not None else sub.parent
@@ -91,7 +161,14 @@ def main(argv=None) -> int:
         parser.error("--jobs must be at least 1")
     if args.submission_timeout <= 0 or args.cell_timeout <= 0:
         parser.error("--cell-timeout and --submission-timeout must be positive")
-    secret = _secret(args, parser)
+    if args.self_check:
+        _self_check_options(args, parser)
+    secret = None if args.self_check else _secret(args, parser)  # (a student has none)
+    notebooks = [p for p in args.submissions if not p.name.endswith(RESULT_SUFFIX)]
+    try:
+        earlier = load_results(p for p in args.submissions if p.name.endswith(RESULT_SUFFIX))
+    except KinlibError as exc:
+        parser.error(str(exc))
     if secret is not None:
         if args.seed != 0:
             parser.error("--seed and a secret both choose the cases: give one of them")
@@ -103,7 +180,13 @@ def main(argv=None) -> int:
     if args.out is not None:
         args.out.mkdir(parents=True, exist_ok=True)
 
+    if secret is None and not args.self_check and len(notebooks) > 1:
+        print(PUBLIC_BATCH.format(n=len(notebooks), seed=args.seed), file=sys.stderr,
+              flush=True)
+
     def done(r: dict) -> None:  # each result is printed and written as soon as it is known
+        if args.self_check:
+            as_practice(r)
         print(to_json(r) if args.json else format_report(r), flush=True)
         if not args.no_write and r["graded"]:
             path = _result_path(r, args.out, taken)
@@ -114,16 +197,19 @@ def main(argv=None) -> int:
                 print(f"could not write {path}: {exc}", file=sys.stderr)
 
     try:
-        results = grade_many(args.submissions, args.assignment, jobs=args.jobs, seed=args.seed,
+        results = grade_many(notebooks, args.assignment, jobs=args.jobs, seed=args.seed,
                              secret=secret, cell_timeout=args.cell_timeout,
                              submission_timeout=args.submission_timeout,
-                             memory_mb=args.memory_mb, unsandboxed=args.unsandboxed,
-                             on_result=done)
+                             memory_mb=args.memory_mb,
+                             unsandboxed=args.unsandboxed or args.self_check,
+                             on_result=done) if notebooks else []
     except SandboxUnavailable as exc:  # no sandbox here: nothing was run
         print(f"not grading: {exc}", file=sys.stderr)
         return 2
+    results += earlier
     print(summary(results), file=sys.stderr if args.json else sys.stdout, flush=True)
-    return 0 if all(r["graded"] for r in results) else 2
+    written = _instructor_files(args, results)
+    return 0 if written and all(r["graded"] for r in results) else 2
 
 
 if __name__ == "__main__":

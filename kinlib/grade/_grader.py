@@ -498,6 +498,13 @@ def summary(results: list[dict]) -> str:
             line += f" / {maxima.pop():g}"
     if any(r.get("warning") for r in results):
         line += "; WITHOUT the sandbox"
+    # a class graded on the public cases (not a student's self-check): they could be
+    # answered from a table of them, with no code (kinlib.grade.__main__ says more)
+    public = [r for r in graded if str(r.get("cases", "")).startswith("public")
+              and not r.get("practice")]
+    if len(results) > 1 and public:
+        line += (f"; WARNING: {len(public)} graded on the PUBLIC cases, which students can "
+                 "run and answer from a table: give --secret-file for hidden cases")
     return line
 
 
@@ -530,11 +537,13 @@ def check_lines(check: dict) -> list[str]:
 def format_report(result: dict) -> str:
     """A per-function text report of one :func:`grade` result, for the student; every line
     passes through :func:`_printable`."""
+    # a self-check (kinlib.grade._practice) says so first
+    first = [f"PRACTICE: {result.get('note', '')}"] if result.get("practice") else []
     lines = [f"{result['submission']}"]
     if result.get("warning"):
         lines.append(f"  WARNING: {result['warning']}")
     if not result["graded"]:
-        return "\n".join(map(_printable, lines + [f"  NOT GRADED: {result['error']}"]))
+        return "\n".join(map(_printable, first + lines + [f"  NOT GRADED: {result['error']}"]))
     lines[0] += f"  ({result['assignment']}: {result.get('title', '')})"
     for c in result["checks"]:
         mark = "ok " if c["passed"] == c["total"] else "   "
@@ -545,7 +554,7 @@ def format_report(result: dict) -> str:
         where = f" ({cell['where']})" if cell["where"] else ""
         lines.append(f"  note: running cell {cell['cell']} gave {cell['error']}{where}")
     lines.append(f"  total: {result['score']:g} / {result['max_score']:g}")
-    return "\n".join(map(_printable, lines))
+    return "\n".join(map(_printable, first + lines))
 
 
 def to_json(result: dict) -> str:
