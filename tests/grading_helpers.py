@@ -3,6 +3,9 @@ judge the instructor's wrong versions of it in this process (:func:`judge_notebo
 
 import ast
 import json
+import os
+import shutil
+import zipfile
 from pathlib import Path
 
 import nbformat
@@ -107,3 +110,62 @@ def judge_notebooks(paths) -> list:
             exec(compile(source, f"<cell {i}>", "exec"), namespace)  # the tests' own code
         results.append(judge_functions(namespace, nb["metadata"]["kinlib"]["assignment"]))
     return results
+
+
+# -- Gradescope: its /autograder layout and its results.json format ---------------------------
+# Gradescope's autograder specification (gradescope-autograders.readthedocs.io, "specs"),
+# written down here as a JSON Schema: the fields it documents, their types and values
+_FORMATS = {"enum": ["text", "html", "simple_format", "md", "ansi"]}
+_SEEN = {"enum": ["hidden", "after_due_date", "after_published", "visible"]}
+GRADESCOPE_SCHEMA = {
+    "type": "object", "additionalProperties": False,
+    "properties": {
+        "score": {"type": "number", "minimum": 0}, "execution_time": {"type": "number"},
+        "output": {"type": "string"}, "output_format": _FORMATS,
+        "test_output_format": _FORMATS, "test_name_format": _FORMATS,
+        "visibility": _SEEN, "stdout_visibility": _SEEN, "extra_data": {"type": "object"},
+        "leaderboard": {"type": "array"},
+        "tests": {"type": "array", "items": {
+            "type": "object", "additionalProperties": False,
+            "properties": {
+                "score": {"type": "number", "minimum": 0},
+                "max_score": {"type": "number", "minimum": 0},
+                "status": {"enum": ["passed", "failed"]}, "name": {"type": "string"},
+                "name_format": _FORMATS, "number": {"type": "string"},
+                "output": {"type": "string"}, "output_format": _FORMATS,
+                "tags": {"type": "array", "items": {"type": "string"}},
+                "visibility": _SEEN, "extra_data": {"type": "object"}}}}},
+    "anyOf": [{"required": ["score"]}, {"required": ["tests"]}],
+}
+
+
+def check_results(data: dict) -> None:
+    """results.json as Gradescope documents it (raises otherwise): the schema, every test
+    named and within its maximum, the score their sum."""
+    import jsonschema
+
+    jsonschema.validate(data, GRADESCOPE_SCHEMA)
+    for t in data["tests"]:
+        assert t["name"] and 0 <= t["score"] <= t["max_score"], t
+    assert abs(sum(t["score"] for t in data["tests"]) - data["score"]) < 0.05
+
+
+def unpack(zip_path: Path, root: Path) -> Path:
+    """Gradescope's layout: the zip's contents in root/source, the submission, results."""
+    source = root / "source"
+    with zipfile.ZipFile(zip_path) as z:
+        z.extractall(source)
+        for info in z.infolist():  # (extractall drops the permission bits)
+            mode = info.external_attr >> 16
+            if mode:
+                os.chmod(source / info.filename, mode)
+    (root / "submission").mkdir()
+    (root / "results").mkdir()
+    return source
+
+
+def hand_in(root: Path, notebook: Path, name: str = "homework.ipynb") -> None:
+    for d in ("submission", "results"):
+        shutil.rmtree(root / d)
+        (root / d).mkdir()
+    shutil.copy(notebook, root / "submission" / name)

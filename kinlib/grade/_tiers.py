@@ -9,7 +9,9 @@
    kernel has them, and every process of that uid killed when it ends. A probe proves the
    tier's promises before anything is graded.
 
-:func:`find_isolation` returns the first that works (or the one asked for), else raises
+:func:`find_isolation` returns the first that works (or the one asked for: the ``sandbox``
+argument, or ``KINLIB_SANDBOX=bubblewrap|container`` in the environment when that is
+``"auto"``, e.g. to insist on bubblewrap), else raises
 :class:`~kinlib.grade._bwrap.SandboxUnavailable` saying why and what to fix. Grading with
 no isolation at all is only ever the caller's explicit choice (``unsandboxed=True``).
 """
@@ -24,10 +26,12 @@ from ._bwrap import FIX, Sandbox, SandboxUnavailable, find_sandbox
 from ._container import Container, container, judge_probe, probe_request, refuse_unless_root
 from ._sandbox import Worker, WorkerDied, WorkerTimeout
 
-__all__ = ["find_isolation", "TIERS"]
+__all__ = ["find_isolation", "TIERS", "TIER_ENV"]
 
 #: what ``tier`` may ask for: the first that works, or one of them
 TIERS = ("auto", "bubblewrap", "container")
+#: the environment variable that picks a tier where the caller leaves it "auto"
+TIER_ENV = "KINLIB_SANDBOX"
 
 
 def find_isolation(blocked=(), tier: str = "auto", unreadable=(),
@@ -38,6 +42,10 @@ def find_isolation(blocked=(), tier: str = "auto", unreadable=(),
     hidden from a submission (the secret, other hand-ins; where results are written),
     besides kinlib itself; the bubblewrap sandbox shows none of them anyway.
     """
+    if tier == "auto":
+        tier = os.environ.get(TIER_ENV) or "auto"
+        if tier not in TIERS:
+            raise KinlibError(f"{TIER_ENV}: expected one of {TIERS}, got {tier!r}")
     if tier not in TIERS:
         raise KinlibError(f"sandbox: expected one of {TIERS}, got {tier!r}")
     why = "the container tier was asked for"
