@@ -7,12 +7,19 @@
 #   make lab-instructor   JupyterLab on instructor/, the notebooks with the solutions
 #   make release          regenerate the student editions (notebooks/, assignments/release/)
 #                         from instructor/ and assignments/source/
+#   make student-repo     what students receive, as a repository of its own, in
+#                         $(STUDENT_REPO) (default build/student-repo; a clone of the published
+#                         student repository is updated in place): the student editions, a
+#                         README, kinlib's wheel and the Binder environment. Set
+#                         STUDENT_REPO_URL to its https address for the README's Binder link.
+#                         This repository (instructor/, assignments/source/) stays with
+#                         instructors: point students at the student repository only.
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.kinlib-installed
 
-.PHONY: lab lab-instructor release test venv bench lint clean site screenshots
+.PHONY: lab lab-instructor release student-repo test venv bench lint clean site screenshots
 
 # The install goes through uv (from PyPI, into the venv: about 25 s where pip takes about
 # 60 s; --compile-bytecode as pip does, else every first import compiles its module); pip
@@ -51,6 +58,13 @@ lab-instructor: $(STAMP)
 
 release: $(STAMP)
 	$(BIN)/python -m kinlib.assign
+
+# The student editions are regenerated first: the release refuses stale ones.
+STUDENT_REPO     ?= build/student-repo
+STUDENT_REPO_URL ?=
+student-repo: release
+	$(BIN)/python -m kinlib.assign --student-repo '$(STUDENT_REPO)' \
+	    $(if $(STUDENT_REPO_URL),--repo-url '$(STUDENT_REPO_URL)')
 
 lint: $(STAMP)
 	$(BIN)/ruff check .

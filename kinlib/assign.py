@@ -56,7 +56,7 @@ from pathlib import Path
 
 from ._optional import course_import
 from .errors import KinlibError
-from .student import ASSIGNMENTS, NOTEBOOKS, write_student_repo
+from .student import ASSIGNMENTS, NOTEBOOKS, check_destination, write_student_repo
 
 __all__ = ["release_source", "release_notebook", "assigned_names", "used_names", "main",
            "student_repo", "BEGIN", "END", "EDITIONS", "STUDENT_FOLDERS", "SOLUTION_TAG"]
@@ -210,6 +210,7 @@ def student_repo(root: Path, dest: Path, repo_url: str | None = None):
     ``dest`` from the course repository ``root``: the student editions as
     :func:`release_notebook` makes them, which must be the ones committed in ``root``
     (else a :class:`KinlibError`: the release publishes what the tests ran)."""
+    check_destination(root, dest, BEGIN)  # refused before any work (and again on writing)
     pairs = _pairs(root)
     released = _released(pairs, course_import("nbformat", "python -m kinlib.assign"))
     stale = _stale(released)

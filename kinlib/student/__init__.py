@@ -62,7 +62,7 @@ def write_student_repo(root: Path | str, dest: Path | str, *, notebooks: dict[st
         File name -> text of each student-edition notebook and released assignment.
     solution_marker : str
         The line that starts a solution block: a notebook in ``dest`` holding it, which
-        the release would leave in place, is refused.
+        the release would leave in place, is refused before anything is written.
     repo_url : str, optional
         The published student repository's address, for the README's Binder link and
         clone command; by default the previous release's.
@@ -73,7 +73,7 @@ def write_student_repo(root: Path | str, dest: Path | str, *, notebooks: dict[st
         The release's files, those written, those removed.
     """
     root, dest = Path(root), Path(dest)
-    previous = check_destination(root, dest)
+    previous = check_destination(root, dest, solution_marker)
     if repo_url is None and previous:
         repo_url = previous.get("repo_url")
     if repo_url:
@@ -89,4 +89,4 @@ def write_student_repo(root: Path | str, dest: Path | str, *, notebooks: dict[st
             **{f"{ASSIGNMENTS}/{name}": t for name, t in assignments.items()}}
     files.update({rel: t.encode("utf-8") for rel, t in text.items()})
     manifest = {"kinlib": pyproject["version"], "repo_url": repo_url}
-    return write_files(dest, files, previous, manifest, solution_marker)
+    return write_files(dest, files, previous, manifest)

@@ -66,10 +66,12 @@ def previous_release(dest: Path) -> dict | None:
     return data
 
 
-def check_destination(root: Path, dest: Path) -> dict | None:
+def check_destination(root: Path, dest: Path, solution_marker: str) -> dict | None:
     """Refuse a ``dest`` that would publish or mix with the instructor's repository
-    ``root``, or that holds files of something other than a student release; the previous
-    release's manifest (None for a new or empty folder)."""
+    ``root``, that holds files of something other than a student release, or instructor
+    files that the release would leave there (a notebook holding ``solution_marker``, an
+    ``instructor/`` or ``assignments/source/`` folder); the previous release's manifest
+    (None for a new or empty folder)."""
     r, d = root.resolve(), dest.resolve()
     if d == r or r.is_relative_to(d):
         raise KinlibError(
@@ -94,6 +96,12 @@ def check_destination(root: Path, dest: Path) -> dict | None:
                 f"{dest} is not empty ({shown}) and holds no student release (no {MANIFEST}): "
                 "give a new or empty folder, or a clone of the student repository a release "
                 "was published to; nothing was written")
+    leaks = _instructor_files(d, set(previous["files"]), solution_marker) if previous else []
+    if leaks:
+        raise KinlibError(
+            f"{dest} holds instructor files that a release would leave in place and publish: "
+            f"{', '.join(leaks)} (solution blocks, or instructor/ or assignments/source/); "
+            "remove them first (nothing was written)")
     return previous
 
 
@@ -105,14 +113,14 @@ def _walk(dest: Path):
             yield (Path(top) / name).relative_to(dest).as_posix()
 
 
-def _instructor_files(dest: Path, keep, solution_marker: str) -> list[str]:
-    """The files under ``dest`` that the release will not replace and that are an
-    instructor's: in an ``instructor/`` or ``assignments/source/`` folder, or a notebook
-    holding a solution block."""
+def _instructor_files(dest: Path, ours, solution_marker: str) -> list[str]:
+    """The files under ``dest`` that are not the previous release's (``ours``: those a
+    release rewrites or removes) and that are an instructor's: in an ``instructor/`` or
+    ``assignments/source/`` folder, or a notebook holding a solution block."""
     found = []
     for rel in _walk(dest):
         parts = rel.split("/")
-        if rel in keep:
+        if rel in ours:
             continue
         if ("instructor" in parts[:-1] or rel.startswith("assignments/source/")
                 or (rel.endswith(".ipynb") and solution_marker
@@ -122,25 +130,17 @@ def _instructor_files(dest: Path, keep, solution_marker: str) -> list[str]:
 
 
 def write_files(dest: Path, files: dict[str, bytes], previous: dict | None,
-                manifest: dict, solution_marker: str) -> Written:
+                manifest: dict) -> Written:
     """Write the release ``files`` (relative path -> content) into ``dest`` (checked by
     :func:`check_destination`, whose result is ``previous``): only those that are new or
     changed; then remove the previous release's files that are gone from it, and write
     the manifest (``manifest`` plus the list of files)."""
     old = set(previous["files"]) if previous else set()
-    if dest.is_dir():
-        foreign = [rel for rel in files if rel not in old and (dest / rel).exists()]
-        if previous is not None and foreign:
-            raise KinlibError(
-                f"{dest}: the release would overwrite {', '.join(sorted(foreign))}, which the "
-                "previous release did not write; move them out of the way (nothing was "
-                "written)")
-        leaks = _instructor_files(dest, set(files), solution_marker)
-        if leaks:
-            raise KinlibError(
-                f"{dest} holds instructor files that the release would leave in place and "
-                f"publish: {', '.join(leaks)} (solution blocks, or instructor/ or "
-                "assignments/source/); remove them first (nothing was written)")
+    foreign = [rel for rel in files if rel not in old and (dest / rel).exists()]
+    if foreign:
+        raise KinlibError(
+            f"{dest}: the release would overwrite {', '.join(sorted(foreign))}, which the "
+            "previous release did not write; move them out of the way (nothing was written)")
     changed = []
     for rel, content in sorted(files.items()):
         path = dest / rel
