@@ -1,18 +1,23 @@
-"""binder/ (the environment repo2docker builds for Binder and JupyterHub images) says what
-pyproject.toml says: binder/requirements.txt lists exactly kinlib's runtime dependencies
-and its ``lab`` extra (what ``make lab`` adds for the notebook server), with the same
-version specifiers; binder/runtime.txt names a Python that ``requires-python`` allows; and
-binder/postBuild installs kinlib itself without re-resolving its dependencies."""
+"""The student repository's environment (``binder/``, what repo2docker builds for Binder
+and a JupyterHub's image; written by ``python -m kinlib.assign --student-repo`` from the
+templates in ``kinlib/student/templates``) says what pyproject.toml says:
+binder/requirements.txt lists exactly kinlib's runtime dependencies, its ``lab`` extra
+(the notebook server and a kernel) and nbformat (which the self-check reads notebooks
+with), with the same version specifiers; binder/runtime.txt names a Python that
+``requires-python`` allows; and binder/postBuild installs the wheel shipped in the
+repository without re-resolving its dependencies.
+
+The course repository itself has no ``binder/``: students are pointed at the student
+repository, never at the instructor's. These tests check the files as kinlib makes them
+(no wheel is built: ``tests/test_student_release.py`` checks a real release with the same
+helpers)."""
 
 from __future__ import annotations
 
-import os
 import re
-import shutil
-import stat
-import subprocess
 from pathlib import Path
 
+import pytest
 from packaging.requirements import InvalidRequirement, Requirement
 from packaging.specifiers import SpecifierSet
 from packaging.utils import canonicalize_name
@@ -22,11 +27,15 @@ try:
 except ModuleNotFoundError:  # Python 3.10: tomli, the same parser, comes with pytest there
     import tomli as tomllib
 
+from kinlib.student import environment, project
+
 ROOT = Path(__file__).resolve().parents[1]
-BINDER = ROOT / "binder"
+WHEEL = "kinlib-0.1.0-py3-none-any.whl"  # any name: the files are made for it
 #: the optional-dependency groups the course's image needs besides the runtime: the
 #: notebook server and a kernel (``dev``, ``fast`` and ``bench`` stay out of it)
 EXTRAS = ("lab",)
+#: and single packages of other groups: nbformat of ``grade``, for the self-check
+PICKED = (("grade", "nbformat"),)
 
 
 def _key(req: Requirement) -> tuple[str, tuple[str, ...], str]:
@@ -66,14 +75,16 @@ def requirement_lines(requirements_text: str) -> list[str]:
     return lines
 
 
-def drift(pyproject_text: str, requirements_text: str, extras=EXTRAS) -> list[str]:
+def drift(pyproject_text: str, requirements_text: str, extras=EXTRAS,
+          picked=PICKED) -> list[str]:
     """How ``requirements_text`` differs from ``pyproject_text``'s ``[project].dependencies``
-    plus the optional dependencies ``extras``: one sentence per package missing, extra or
-    with other specifiers (an empty list when the two agree).
+    plus the optional dependencies ``extras`` and the packages ``picked`` ((group, name)
+    pairs): one sentence per package missing, extra or with other specifiers (an empty list
+    when the two agree).
 
-    >>> drift('[project]\\ndependencies = ["numpy>=1.24"]', "numpy>=1.24  # arrays\\n", ())
+    >>> drift('[project]\\ndependencies = ["numpy>=1.24"]', "numpy>=1.24  # arrays\\n", (), ())
     []
-    >>> drift('[project]\\ndependencies = ["numpy>=1.24"]', "NumPy>=1.20\\nscipy\\n", ())
+    >>> drift('[project]\\ndependencies = ["numpy>=1.24"]', "NumPy>=1.20\\nscipy\\n", (), ())
     ['numpy: pyproject.toml has >=1.24, binder/requirements.txt has >=1.20', \
 'scipy: in binder/requirements.txt (any version) but not in pyproject.toml']
     """
@@ -85,10 +96,20 @@ def drift(pyproject_text: str, requirements_text: str, extras=EXTRAS) -> list[st
         if extra not in groups:
             problems.append(f"pyproject.toml has no optional-dependency group {extra!r}")
         wanted += groups.get(extra, [])
+    for extra, name in picked:
+        found = [r for r in groups.get(extra, []) if canonicalize_name(Requirement(r).name)
+                 == canonicalize_name(name)]
+        if not found:
+            problems.append(f"pyproject.toml's {extra!r} group has no {name}")
+        wanted += found
     lines = requirement_lines(requirements_text)
     options = [line for line in lines if line.startswith("-")]
     problems += [f"binder/requirements.txt: {line!r} is not a plain requirement (kinlib is "
                  "installed by binder/postBuild)" for line in options]
+    # the student environment installs kinlib from its wheel, never from an index
+    problems += [f"binder/requirements.txt: {line!r} is kinlib itself (binder/postBuild "
+                 "installs the shipped wheel)" for line in lines if line not in options
+                 and canonicalize_name(Requirement(line).name) == "kinlib"]
     expected = _collect(wanted, "pyproject.toml", problems)
     listed = _collect([line for line in lines if line not in options],
                       "binder/requirements.txt", problems)
@@ -122,65 +143,85 @@ def install_commands(script_text: str) -> list[str]:
     return [line for line in lines if re.search(r"\bpip\s+install\b", line)]
 
 
-def installs_without_deps(script_text: str) -> bool:
-    """Every ``pip install`` in the script has ``--no-deps``, and one installs ``.``."""
-    commands = install_commands(script_text)
-    return (bool(commands) and all("--no-deps" in c.split() for c in commands)
-            and any("." in c.split() for c in commands))
+def installs_wheel_without_deps(script_text: str, wheel: str) -> bool:
+    """The script has one ``pip install`` command (a line continued with ``\\`` is one
+    line): of the wheel ``wheels/<wheel>``, with ``--no-deps`` and ``--no-index``."""
+    commands = install_commands(script_text.replace("\\\n", " "))
+    return (len(commands) == 1 and {"--no-deps", "--no-index"} <= set(commands[0].split())
+            and any(arg.strip("'\"") == f"wheels/{wheel}" for arg in commands[0].split()))
 
 
-# --- the repository's files -----------------------------------------------------------
+# --- the files kinlib writes into a student repository ---------------------------------
 
-def test_binder_requirements_match_pyproject():
-    problems = drift((ROOT / "pyproject.toml").read_text(),
-                     (BINDER / "requirements.txt").read_text())
-    assert not problems, ("binder/requirements.txt and pyproject.toml have drifted apart "
-                          "(dependencies + extras " + ", ".join(EXTRAS) + "):\n  "
-                          + "\n  ".join(problems))
+def _files() -> dict[str, str]:
+    return environment(project(ROOT), WHEEL)
 
 
-def test_runtime_is_a_python_pyproject_allows():
+def check_requirements(text: str) -> None:
+    problems = drift((ROOT / "pyproject.toml").read_text(), text)
+    assert not problems, ("the student repository's binder/requirements.txt and "
+                          "pyproject.toml have drifted apart (dependencies + extras "
+                          + ", ".join(EXTRAS) + " + nbformat):\n  " + "\n  ".join(problems))
+
+
+def check_runtime(text: str) -> None:
     requires = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["requires-python"]
-    runtime = (BINDER / "runtime.txt").read_text()
-    assert runtime_allowed(runtime, requires), \
-        f"binder/runtime.txt asks for Python {runtime_python(runtime)}, " \
+    assert runtime_allowed(text, requires), \
+        f"binder/runtime.txt asks for Python {runtime_python(text)}, " \
         f"pyproject.toml requires-python is {requires!r}"
 
 
-def test_postbuild_is_an_executable_strict_bash_script_installing_kinlib_without_deps():
-    path = BINDER / "postBuild"
-    text = path.read_text()
-    assert path.stat().st_mode & stat.S_IXUSR, "binder/postBuild is not executable"
+def check_postbuild(text: str, wheel: str) -> None:
     lines = text.splitlines()
     assert lines and re.fullmatch(r"#!\s*(/usr/bin/env\s+bash|/bin/bash)", lines[0]), \
         f"binder/postBuild should start with a bash shebang, not {lines[:1]}"
     assert "set -euo pipefail" in lines, "binder/postBuild should `set -euo pipefail`"
-    assert installs_without_deps(text), \
-        f"binder/postBuild should install kinlib with `pip install --no-deps .`: " \
-        f"its pip commands are {install_commands(text)}"
-    # The mode git records is the one a clone (and so repo2docker) gets.
-    git = shutil.which("git")
-    if git and (ROOT / ".git").exists():
-        out = subprocess.run([git, "ls-files", "-s", "binder/postBuild"], cwd=ROOT,
-                             capture_output=True, text=True, env={**os.environ, "LC_ALL": "C"})
-        if out.returncode == 0 and out.stdout:
-            assert out.stdout.startswith("100755"), \
-                f"git records binder/postBuild without its executable bit: {out.stdout.strip()}"
+    assert installs_wheel_without_deps(text, wheel), \
+        f"binder/postBuild should install wheels/{wheel} with `pip install --no-deps " \
+        f"--no-index` and nothing else: its pip commands are {install_commands(text)}"
+    # it regenerates nothing: no course tool runs at build time
+    assert "kinlib.assign" not in text and "instructor" not in text, \
+        f"binder/postBuild must build and regenerate nothing:\n{text}"
+
+
+def test_binder_requirements_match_pyproject():
+    check_requirements(_files()["binder/requirements.txt"])
+
+
+def test_runtime_is_a_python_pyproject_allows():
+    check_runtime(_files()["binder/runtime.txt"])
+
+
+def test_postbuild_is_a_strict_bash_script_installing_the_shipped_wheel_without_deps():
+    check_postbuild(_files()["binder/postBuild"], WHEEL)
+
+
+def test_the_course_repository_has_no_binder_folder():
+    """Binder and repo2docker look for binder/ (or .binder/) first: the instructor's
+    repository must not be what a student's image is built from."""
+    for name in ("binder", ".binder"):
+        assert not (ROOT / name).exists(), \
+            f"{name}/ is back in the course repository: the student environment lives in " \
+            "kinlib/student/templates and goes into the student repository"
 
 
 # --- controls: the checks above can fail ----------------------------------------------
 
 def test_drift_reports_each_kind_of_difference():
     pyproject = (ROOT / "pyproject.toml").read_text()
-    requirements = (BINDER / "requirements.txt").read_text()
+    requirements = _files()["binder/requirements.txt"]
     lines = requirement_lines(requirements)
-    assert {canonicalize_name(Requirement(line).name) for line in lines} >= {"numpy",
-                                                                             "jupyterlab"}
+    assert {canonicalize_name(Requirement(line).name) for line in lines} >= {
+        "numpy", "jupyterlab", "nbformat"}
     assert not drift(pyproject, requirements)
 
     dropped = requirements.replace("jupyterlab>=4\n", "")
     assert drift(pyproject, dropped) == [
         "jupyterlab: in pyproject.toml (>=4) but not in binder/requirements.txt"]
+
+    no_nbformat = requirements.replace("nbformat>=5\n", "")
+    assert drift(pyproject, no_nbformat) == [
+        "nbformat: in pyproject.toml (>=5) but not in binder/requirements.txt"]
 
     loosened = requirements.replace("numpy>=1.24", "numpy>=1.20")
     assert drift(pyproject, loosened) == [
@@ -191,6 +232,9 @@ def test_drift_reports_each_kind_of_difference():
         "binder/requirements.txt: '-e .' is not a plain requirement "
         "(kinlib is installed by binder/postBuild)",
         "pytest: in binder/requirements.txt (>=8) but not in pyproject.toml"]
+
+    assert "binder/requirements.txt: 'kinlib>=0.1' is kinlib itself (binder/postBuild " \
+        "installs the shipped wheel)" in drift(pyproject, requirements + "kinlib>=0.1\n")
 
     twice = requirements + "JupyterLab>=4\n"
     assert drift(pyproject, twice) == ["binder/requirements.txt: jupyterlab is listed twice"]
@@ -203,12 +247,20 @@ def test_drift_reports_each_kind_of_difference():
 
     assert drift(pyproject, requirements, extras=("lab", "labs")) == [
         "pyproject.toml has no optional-dependency group 'labs'"]
+    assert "pyproject.toml's 'grade' group has no jupyterlab" in drift(
+        pyproject, requirements, picked=(("grade", "jupyterlab"),))
 
 
 def test_runtime_and_postbuild_checks_can_fail():
     assert runtime_allowed("python-3.11\n", ">=3.10")
     assert not runtime_allowed("python-3.9\n", ">=3.10")
-    assert installs_without_deps("set -euo pipefail\npython -m pip install --no-deps .\n")
-    assert not installs_without_deps("python -m pip install .\n")
-    assert not installs_without_deps("pip install --no-deps .\npip install -r x.txt\n")
-    assert not installs_without_deps("# pip install --no-deps .\n")
+    good = _files()["binder/postBuild"]
+    assert installs_wheel_without_deps(good, WHEEL)
+    assert not installs_wheel_without_deps(good, "kinlib-9.9-py3-none-any.whl")
+    assert not installs_wheel_without_deps(good.replace("--no-deps ", ""), WHEEL)
+    assert not installs_wheel_without_deps(good + "pip install -r x.txt\n", WHEEL)
+    assert not installs_wheel_without_deps(
+        "set -euo pipefail\npython -m pip install --no-deps --no-index .\n", WHEEL)
+    assert not installs_wheel_without_deps("# " + good.replace("\n", "\n# "), WHEEL)
+    with pytest.raises(AssertionError, match="must build and regenerate nothing"):
+        check_postbuild(good + "python -m kinlib.assign --root .\n", WHEEL)

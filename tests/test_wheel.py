@@ -102,9 +102,11 @@ assert not [m for m in sys.modules if "editable" in m], "the editable install wa
 # what kinlib reads at run time came with the wheel
 from kinlib.robots import autorob_test_robot
 from kinlib.site import TEMPLATES
+from kinlib.student import template
 from kinlib.viz._widget import scene_js
 assert autorob_test_robot().dof == 3
 assert (Path(str(TEMPLATES)) / "kinlib_page.html.j2").is_file()
+assert all(template(name) for name in ("README.md", "postBuild", "runtime.txt", "gitignore"))
 assert "function" in scene_js()
 worker = importlib.util.find_spec("kinlib.grade._worker").origin
 assert venv in Path(worker).resolve().parents, worker
