@@ -237,7 +237,8 @@ def test_the_release_installed_by_its_postbuild_runs_from_its_folder(release, tm
     """A fresh venv (no packages) gets kinlib from the release's own binder/postBuild, run
     in the release's folder with pip lent to it alone; then the checkout's packages stand in
     for binder/requirements.txt, and a release notebook (08: a URDF from the package data,
-    the 3-D viewer) runs and a released assignment is graded, both from the release."""
+    the 3-D viewer) runs and a released assignment is self-checked as the README says,
+    both from the release."""
     venv = tmp_path / "venv"
     base = getattr(sys, "_base_executable", None) or sys.executable
     subprocess.run([base, "-m", "venv", "--without-pip", str(venv)], check=True)
@@ -261,13 +262,15 @@ def test_the_release_installed_by_its_postbuild_runs_from_its_folder(release, tm
                           "notebooks/08_urdf_and_matrix_stack.ipynb"], cwd=release,
                          capture_output=True, text=True, env=env, timeout=600)
     assert ran.returncode == 0, ran.stdout + ran.stderr[-3000:]
-    graded = subprocess.run([str(python), "-m", "kinlib.grade", "--json", "--no-write",
-                             "assignments/01_rotations.ipynb"], cwd=release,
+    # the self-check as the README tells a student to run it, from the release's folder
+    (command,) = [line for line in (release / "README.md").read_text().splitlines()
+                  if line.startswith("python -m kinlib.grade --self-check ")]
+    graded = subprocess.run([str(python), *command.split()[1:]], cwd=release,
                             capture_output=True, text=True, env=env, timeout=600)
     assert graded.returncode == 0, graded.stdout + graded.stderr
-    (result,) = map(json.loads, graded.stdout.splitlines())
-    assert result["graded"] and result["assignment"] == "01_rotations", result
-    assert result["score"] == 0 < result["max_score"]  # blank: every function unwritten
+    assert graded.stdout.startswith("PRACTICE: "), graded.stdout[:500]
+    assert "(01_rotations: Rotations)" in graded.stdout
+    assert "\n  total: 0 / " in graded.stdout  # blank: every function still unwritten
     assert _files(release) == set(json.loads((release / MANIFEST).read_text())["files"]) \
         | {MANIFEST}, "running the release left files in it"
 
