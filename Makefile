@@ -8,10 +8,11 @@
 #   make release          regenerate the student editions (notebooks/, assignments/release/)
 #                         from instructor/ and assignments/source/
 #   make student-repo     what students receive, as a repository of its own, in
-#                         $(STUDENT_REPO) (default build/student-repo; a clone of the published
-#                         student repository is updated in place): the student editions, a
-#                         README, kinlib's wheel and the Binder environment. Set
-#                         STUDENT_REPO_URL to its https address for the README's Binder link.
+#                         $(STUDENT_REPO) (default build/student-repo, which make clean
+#                         removes; a clone of the published student repository, kept beside
+#                         this one, is updated in place): the student editions, a README,
+#                         kinlib's wheel and the Binder environment. Set STUDENT_REPO_URL to
+#                         its https address for the README's Binder link.
 #                         This repository (instructor/, assignments/source/) stays with
 #                         instructors: point students at the student repository only.
 PYTHON ?= python3
