@@ -49,10 +49,13 @@ def _parser() -> argparse.ArgumentParser:
                         "process of its own, with time limits) and without a secret; every "
                         "report says PRACTICE; writes no result file unless --out is given")
     p.add_argument("--csv", type=Path, default=None, metavar="FILE",
-                   help="write a gradebook CSV for Canvas's import: a row per student (from "
-                        "Canvas's file names, a folder per student, or the file name), the "
-                        "columns Student, ID, SIS User ID, SIS Login ID, Section, then each "
-                        "assignment's total and its functions' points; a Points Possible row")
+                   help="write a gradebook CSV for Canvas's import: a row per student (told "
+                        "from Canvas's Download Submissions file names, a folder per student "
+                        "or the file name; the notebook's own claim only when the path names "
+                        "nobody), the columns Student, ID, SIS User ID, SIS Login ID, Section, "
+                        "then each assignment's total and its functions' points, and a Points "
+                        "Possible row; two submissions for one student are left blank and "
+                        "named on stderr")
     p.add_argument("--csv-totals-only", action="store_true",
                    help="in --csv, one column per assignment (its total), no functions")
     p.add_argument("--report", type=Path, default=None, metavar="FILE.html",
@@ -75,7 +78,9 @@ def _parser() -> argparse.ArgumentParser:
                         "can run locally)")
     p.add_argument("--secret-file", type=Path, default=None,
                    help="grade on hidden cases made from the secret in this file (or set "
-                        f"{SECRET_ENV}); keep it out of what students can see")
+                        f"{SECRET_ENV}); keep it out of what students can see. Grading more "
+                        "than one submission without a secret warns: the public cases can be "
+                        "answered from a table")
     p.add_argument("--cell-timeout", type=float, default=60.0,
                    help="seconds each notebook cell may run (default 60)")
     p.add_argument("--submission-timeout", type=float, default=SUBMISSION_TIMEOUT,

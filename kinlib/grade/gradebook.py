@@ -32,8 +32,8 @@ from pathlib import Path
 from ..errors import KinlibError
 from ._grader import assignment_names
 
-__all__ = ["Identity", "canvas_identity", "identify", "neutralise", "gradebook_rows",
-           "write_csv", "load_results", "CANVAS_COLUMNS"]
+__all__ = ["Identity", "canvas_identity", "identify", "student_claim", "neutralise",
+           "gradebook_rows", "write_csv", "load_results", "count_sources", "CANVAS_COLUMNS"]
 
 #: the student columns of Canvas's gradebook export, which its import reads
 CANVAS_COLUMNS = ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
