@@ -121,7 +121,8 @@ class Container:
         worker = str(Path(__file__).resolve().with_name("_worker.py"))
         env = {**worker_env(workdir, "/usr/bin:/bin"), "TMPDIR": workdir,
                "MPLCONFIGDIR": os.path.join(workdir, ".matplotlib")}
-        argv = [self.python, "-I", "-S", worker, json.dumps(config)]
+        argv = [self.python, "-I", "-S", "-B", worker, json.dumps(config)]  # (-B: root writes
+        # nothing into the grader's folders while it loads the worker)
         return argv, workdir, env, Launch(uid, workdir)
 
     def end(self, launch: Launch) -> None:
