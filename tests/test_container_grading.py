@@ -194,6 +194,55 @@ def test_the_solution_gets_full_marks_and_the_student_version_none(gradescope, m
     assert stat.S_IMODE((root / "results").stat().st_mode) == 0o700
 
 
+CONFINEMENT = '''import dataclasses, json, sys
+from kinlib.grade import _confine, _tiers
+from kinlib.grade._bwrap import SandboxUnavailable
+from kinlib.grade._container import container
+from kinlib.grade._sandbox import Worker
+
+canary = sys.argv[1]
+full = container()
+out = {}
+for name, tier in (("full", full), ("uid only", dataclasses.replace(full, landlock=0,
+                                                                    seccomp=None))):
+    with Worker(sandbox=tier, memory_mb=1024, cpu_s=60) as w:
+        w.request({"op": "probe", "read": [canary], "write": [], "imports": ["sympy"]})
+        out[name] = w.receive(60)
+_confine.landlock_abi = lambda: 0  # a kernel without Landlock: the probe must catch the leak
+try:
+    _tiers.find_isolation(tier="container", unreadable=[canary])
+    out["refused"] = None
+except SandboxUnavailable as exc:
+    out["refused"] = str(exc)
+print(json.dumps(out))
+'''
+
+
+def test_landlock_and_seccomp_are_what_hold_a_readable_file_and_the_network(gradescope,
+                                                                           memory_cgroup):
+    """The control of the container tier's own layers: a file every user may read, and an
+    IPv4/IPv6 socket, are refused to a confined process, and allowed to one that only has
+    its own uid; without Landlock the probe refuses the tier, naming the file and the fix."""
+    root, _, _, env = gradescope
+    folder = Path(tempfile.mkdtemp(prefix="kinlib-canary-", dir="/tmp"))
+    try:
+        os.chmod(folder, 0o755)
+        canary = folder / "readable-by-all.txt"
+        canary.write_text("canary\n")
+        os.chmod(canary, 0o644)
+        out = in_container([root / "venv" / "bin" / "python", "-P", "-c", CONFINEMENT, canary],
+                           memory_cgroup, {**env, "PYTHONPATH": str(root / "source")}, 300)
+        assert out.returncode == 0, out.stderr[-3000:]
+        facts = json.loads(out.stdout.strip().splitlines()[-1])
+        full, bare = facts["full"], facts["uid only"]
+        assert full["uid"] != 0 and bare["uid"] != 0 and full["imports"] == bare["imports"] == []
+        assert full["readable"] == [] and full["network"] == []
+        assert bare["readable"] == [str(canary)] and bare["network"] == ["AF_INET", "AF_INET6"]
+        assert f"chmod -R go-rwx {canary}" in facts["refused"], facts["refused"]
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
 HOSTILE = '''import json, os, socket, subprocess, sys
 A = {attack!r}
 done = []
