@@ -14,17 +14,12 @@ import zipfile
 from pathlib import Path
 
 import pytest
-from grading_helpers import ROOT, check_results, hand_in, unpack
+from grading_helpers import NOT_NEEDED, ROOT, check_results, hand_in, unpack
 
 from kinlib.grade._container import memory_limit_mb
 from kinlib.grade.gradescope import export, results_json
 
 NAME = "02_forward_kinematics"
-#: what a grader does not need, and Gradescope's image must not get (issue: 55 packages,
-#: 343 MB with Jupyter, zmq, tornado, pyngrok)
-NOT_NEEDED = {"jupyterlab", "notebook", "jupyter-server", "ipykernel", "ipywidgets",
-              "anywidget", "meshcat", "pyzmq", "tornado", "pyngrok", "u-msgpack-python",
-              "scipy", "numba", "nbconvert", "nbclient"}
 
 
 @pytest.fixture(scope="module")
