@@ -191,6 +191,7 @@ def test_the_solution_gets_full_marks_and_the_student_version_none(gradescope, m
     assert data["score"] == (FULL if edition == "source" else 0)
     assert f"memory per process: {CONTAINER_MB - 256} MiB (container limit: " \
            f"{CONTAINER_MB} MiB)" in out.stdout
+    assert "  graded in: container tier: unprivileged uid" in out.stdout  # the report
     assert stat.S_IMODE((root / "results").stat().st_mode) == 0o700
 
 

@@ -107,6 +107,7 @@ def test_run_autograder_grades_the_submission(unpacked, edition):
         assert data["score"] == 0 and {t["status"] for t in data["tests"]} == {"failed"}
         assert all("NotImplementedError" in t["output"] for t in data["tests"])
     assert "total:" in out.stdout  # the instructor's view in Gradescope's stdout
+    assert "  graded in: bubblewrap " in out.stdout
 
 
 def test_no_sandbox_in_the_container_refuses_unless_allowed(autograder, unpacked):

@@ -20,6 +20,7 @@ from ._grader import (
     to_json,
 )
 from ._practice import as_practice
+from ._tiers import TIER_ENV, TIERS
 from .class_report import write_report
 from .gradebook import count_sources, identify, load_results, write_csv
 
@@ -88,10 +89,27 @@ def _parser() -> argparse.ArgumentParser:
                         f"(default {SUBMISSION_TIMEOUT:g})")
     p.add_argument("--memory-mb", type=int, default=4096,
                    help="address-space limit of a student process in MiB (default 4096)")
+    p.add_argument("--sandbox", choices=TIERS, default="auto",
+                   help="where submissions run: bubblewrap's sandbox where it can run, else, "
+                        "for a grader run as root in a container that refuses namespaces "
+                        "(Docker's default profile), the container tier (an unprivileged uid "
+                        "of its own, Landlock, seccomp); or insist on one (default: auto, or "
+                        f"{TIER_ENV})")
     p.add_argument("--unsandboxed", action="store_true",
-                   help="run submissions WITHOUT the sandbox (where bubblewrap cannot run); "
+                   help="run submissions WITHOUT the sandbox (where neither can run); "
                         "their code then has your rights, and every report says so")
     return p
+
+
+def _protected(args, notebooks: list) -> dict:
+    """What a submission must neither read nor write, for the container tier's probe: the
+    secret's file, the other hand-ins, and wherever results and reports are written."""
+    unreadable = [p for p in (args.secret_file,) if p is not None]
+    if len(notebooks) > 1:
+        unreadable += notebooks
+    out = [args.out] if args.out is not None else sorted({p.parent for p in notebooks})
+    unwritable = out + [p.parent for p in (args.csv, args.report) if p is not None]
+    return {"unreadable": unreadable + unwritable, "unwritable": unwritable}
 
 
 def _secret(args, parser) -> str | None:
@@ -207,6 +225,7 @@ def main(argv=None) -> int:
                              submission_timeout=args.submission_timeout,
                              memory_mb=args.memory_mb,
                              unsandboxed=args.unsandboxed or args.self_check,
+                             sandbox=args.sandbox, **_protected(args, notebooks),
                              on_result=done) if notebooks else []
     except SandboxUnavailable as exc:  # no sandbox here: nothing was run
         print(f"not grading: {exc}", file=sys.stderr)

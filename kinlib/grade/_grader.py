@@ -554,6 +554,8 @@ def format_report(result: dict) -> str:
         where = f" ({cell['where']})" if cell["where"] else ""
         lines.append(f"  note: running cell {cell['cell']} gave {cell['error']}{where}")
     lines.append(f"  total: {result['score']:g} / {result['max_score']:g}")
+    if result.get("sandbox"):  # the isolation tier it ran in
+        lines.append(f"  graded in: {result['sandbox']}")
     return "\n".join(map(_printable, first + lines))
 
 
