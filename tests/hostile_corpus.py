@@ -526,7 +526,8 @@ def check_untouched(run) -> None:
     assert not (run.root / "big.bin").exists()
     assert list(run.site.iterdir()) == []
     grader, assignments = run.after
-    assert grader == run.before, {k for k in set(grader) | set(run.before) if grader.get(k) != run.before.get(k)}
+    assert grader == run.before, {k for k in set(grader) | set(run.before)
+                                  if grader.get(k) != run.before.get(k)}
     assert assignments == {f"source/{k}": v for k, v in digest(ROOT / "source").items()}
     assert run.public["classmate.ipynb"]["score"] == FULL
 

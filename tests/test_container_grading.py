@@ -109,10 +109,14 @@ def in_container(cmd, cgroup: Path, env: dict, timeout: float = 600):
 
 
 def _env(**extra) -> dict:
+    """The environment of the container's commands: no uv on the PATH (as on Gradescope's
+    image, so setup.sh installs it with the image's pip), nothing of this test run's."""
     env = {k: v for k, v in os.environ.items()
            if not k.startswith(("KINLIB_", "PYTHON", "VIRTUAL_ENV"))}
-    return {**env, "PATH": f"{Path(sys.executable).parent}:{env.get('PATH', '/usr/bin:/bin')}",
-            **extra}
+    path = [d for d in env.get("PATH", "/usr/bin:/bin").split(os.pathsep)
+            if d and not os.path.exists(os.path.join(d, "uv"))
+            and Path(d).resolve() != Path(sys.executable).parent.resolve()]
+    return {**env, "PATH": os.pathsep.join(path), **extra}
 
 
 @pytest.fixture(scope="module")
@@ -160,6 +164,7 @@ def test_setup_installs_a_lean_python_environment_every_user_can_read(gradescope
     assert "submissions run in container tier: unprivileged uid" in setup.stdout, setup.stdout
     assert f"(container: {CONTAINER_MB} limit)" in setup.stdout
     assert f"may use {CONTAINER_MB - 256} MiB" in setup.stdout
+    assert (root / "tools" / "bin" / "uv").is_file()  # (no uv on the image: pip put it there)
     python = root / "venv" / "bin" / "python"
     facts = json.loads(subprocess.run(
         [python, "-I", "-c", "import sys, json, importlib.metadata as m; print(json.dumps("

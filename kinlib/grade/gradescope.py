@@ -103,7 +103,8 @@ if [ -z "$UV" ]; then
     if ! python3 -m pip --version >/dev/null 2>&1; then
         apt-get update -q >/dev/null && apt-get install -y -q python3-pip >/dev/null
     fi
-    python3 -m pip install --quiet --target "$ROOT/tools" "{uv}"
+    python3 -m pip install --quiet --target "$ROOT/tools" "{uv}" \\
+        || python3 -m pip install --quiet --break-system-packages --target "$ROOT/tools" "{uv}"
     UV="$ROOT/tools/bin/uv"
 fi
 rm -rf "$ROOT/venv"
