@@ -249,6 +249,41 @@ def test_landlock_and_seccomp_are_what_hold_a_readable_file_and_the_network(grad
         shutil.rmtree(folder, ignore_errors=True)
 
 
+KILLER = '''import dataclasses, json, sys, time
+from kinlib.grade._container import _processes_of, container
+from kinlib.grade._sandbox import Worker
+
+marker = sys.argv[1]
+cell = ("import subprocess, sys\\n"
+        "code = 'import os, time\\\\nwhile True:\\\\n    try:\\\\n        os.kill(-1, 9)\\\\n"
+        "    except OSError:\\\\n        pass\\\\n    time.sleep(0.001)  # " + marker + "'\\n"
+        "subprocess.Popen([sys.executable, '-c', code], start_new_session=True)\\n")
+tier = dataclasses.replace(container(), landlock=0, seccomp=None)  # (no Landlock scope)
+w = Worker(sandbox=tier, memory_mb=1024, cpu_s=60)
+uid = w._launch.uid
+w.request({"op": "cells", "cells": [[0, cell]]})
+time.sleep(1.5)  # (the daemon has killed the worker, and would kill any sweeper of its uid)
+w.close()
+print(json.dumps({"uid": uid, "left": _processes_of(uid)}))
+'''
+
+
+def test_a_daemon_that_kills_its_own_uid_is_still_swept(gradescope, memory_cgroup):
+    """A process that signals every process of its uid (allowed where Landlock's signal
+    scope is missing) kills the sweeper of that uid; the grader, root, still ends it."""
+    root, _, _, env = gradescope
+    marker = f"kinlib-killer-{secrets.token_hex(6)}"
+    try:
+        out = in_container([root / "venv" / "bin" / "python", "-P", "-c", KILLER, marker],
+                           memory_cgroup, {**env, "PYTHONPATH": str(root / "source")}, 120)
+        assert out.returncode == 0, out.stderr[-3000:]
+        facts = json.loads(out.stdout.strip().splitlines()[-1])
+        assert facts["uid"] != 0 and facts["left"] == [], facts
+        assert host_pids(marker) == []
+    finally:
+        hc.kill_marked(marker)
+
+
 HOSTILE = '''import json, os, socket, subprocess, sys
 A = {attack!r}
 done = []
