@@ -198,6 +198,8 @@ def test_class_report_names_the_planted_mistakes(graded):
     glance = text.split("At a glance: the most common mistakes")[1]
     assert glance.split("assignment ", 1)[1].startswith(
         f"{A} · rotx: transposed 4 of 8 students (50 %)")  # the first
+    chart = glance.split("Not done yet")[0]  # the blank notebook: not done, not a mistake
+    assert "NotImplementedError" not in chart and "Not done yet" in glance
     roty_row = text.split("roty rotation about y by θ")[1].split("rotz")[0]
     assert f"raised ValueError : 1 of 8 (12 %) — raised ValueError: {SCRIPT}" in roty_row
     rotx_row = text.split("rotx rotation about x by θ")[1].split("roty")[0]

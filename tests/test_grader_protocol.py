@@ -201,3 +201,18 @@ def test_notebook_files_are_read_as_plain_json(tmp_path):
         path.write_text(text, encoding="latin-1")
         bad = grade(path)
         assert not bad["graded"] and "expected a Jupyter notebook" in bad["error"], bad
+
+
+def test_the_assignment_is_told_from_a_canvas_download_name(tmp_path):
+    """Canvas's "Download Submissions" prefixes the student's file name
+    (lastfirst_12345_6789012_01_rotations.ipynb); the assignment is still found."""
+    from kinlib.errors import KinlibError
+    from kinlib.grade._grader import _which
+
+    empty = {"metadata": {}, "cells": []}
+    for name, want in (("smithbob_12346_6789013_01_rotations.ipynb", "01_rotations"),
+                       ("doejane_late_12_34_04_planning-1.ipynb", "04_planning"),
+                       ("02_forward_kinematics.ipynb", "02_forward_kinematics")):
+        assert _which(empty, tmp_path / name, None) == want, name
+    with pytest.raises(KinlibError, match="--assignment"):
+        _which(empty, tmp_path / "smithbob_12346_homework.ipynb", None)

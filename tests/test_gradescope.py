@@ -7,6 +7,7 @@ the container tier, under Docker's default profile: ``tests/test_container_gradi
 import importlib.metadata as metadata
 import json
 import os
+import shutil
 import stat
 import subprocess
 import sys
@@ -96,6 +97,8 @@ def test_run_autograder_grades_the_submission(unpacked, edition):
     assert {t["visibility"] for t in data["tests"]} == {"after_due_date"}
     assert data["visibility"] == "after_due_date" and data["stdout_visibility"] == "hidden"
     assert "total" not in data["output"]  # (the output students always see)
+    assert "your results are shown after the due date" in data["output"]
+    assert "graded: homework.ipynb" in data["output"]
     assert data["output_format"] == data["test_output_format"] == "text"
     assert {(t["output_format"], t["name_format"]) for t in data["tests"]} == {("text", "text")}
     max_score = sum(t["max_score"] for t in data["tests"])
@@ -135,11 +138,30 @@ def test_no_sandbox_in_the_container_refuses_unless_allowed(autograder, unpacked
     assert data["extra_data"]["kinlib"]["tier"] is None
 
 
+def test_a_submission_of_two_notebooks_says_which_one_was_graded(unpacked):
+    root = unpacked
+    hand_in(root, ROOT / "release" / f"{NAME}.ipynb", f"{NAME}.ipynb")
+    shutil.copy(ROOT / "source" / f"{NAME}.ipynb", root / "submission" / "Untitled (1).ipynb")
+    out = run_autograder(root)
+    assert out.returncode == 0, out.stderr[-2000:]
+    data = json.loads((root / "results" / "results.json").read_text())
+    check_results(data)
+    assert data["score"] == 0  # the one named for the assignment: the blank one
+    assert f"graded: {NAME}.ipynb" in data["output"]
+    assert "not graded (one notebook is graded per submission): Untitled (1).ipynb" \
+        in data["output"]
+
+
 def test_a_submission_without_a_notebook_gets_a_result_saying_so(unpacked, tmp_path):
     root = unpacked
     (tmp_path / "answers.py").write_text("print('hi')\n")
     hand_in(root, tmp_path / "answers.py", "answers.py")
-    out = run_autograder(root)
+    # (a relative path to the Python, as assignments/README's trial gives it)
+    python = Path(sys.executable)
+    out = subprocess.run([str(root / "source" / "run_autograder")], capture_output=True,
+                         text=True, timeout=300, cwd=python.parent.parent,
+                         env={**os.environ, "AUTOGRADER_ROOT": str(root),
+                              "KINLIB_AUTOGRADER_PYTHON": f"{python.parent.name}/{python.name}"})
     assert out.returncode == 0, out.stderr
     data = json.loads((root / "results" / "results.json").read_text())
     check_results(data)

