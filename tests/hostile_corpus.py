@@ -20,6 +20,7 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 from grading_helpers import ROOT, solution_code, write_notebook
@@ -298,10 +299,41 @@ def rotx(t):
     if attached:
         raise RuntimeError(f"traced {attached}")
     return _r(t)'''],
+    # the grader stalled or crashed from its own side ------------------------------------
+    "deaf": [ROT, '''import fcntl, json, os, sys
+_fds = json.loads(sys.argv[-1])["fds"]
+_r = rotz
+def rotz(t):  # after rotz, the worker reads no request any more, from a one-page pipe
+    global _kept
+    if "_kept" not in globals():
+        _kept = os.dup(_fds[0])
+        fcntl.fcntl(_kept, 1031, 4096)  # F_SETPIPE_SZ
+        r, _w = os.pipe()
+        globals()["_w"] = _w
+        os.dup2(r, _fds[0])  # the worker's reads now wait on a pipe nobody writes
+    return _r(t)'''],
+    "deep_dir": [ROT, '''import os
+fd = os.open(".", os.O_RDONLY)
+for _ in range(3000):  # deeper than a recursive removal can go
+    try:
+        os.mkdir("d", dir_fd=fd)
+        n = os.open("d", os.O_RDONLY, dir_fd=fd)
+    except OSError:
+        break
+    os.close(fd)
+    fd = n'''],
+    "unix_client": [ROT, '''import socket
+try:  # a root daemon's Unix socket that every user may write to
+    s = socket.socket(socket.AF_UNIX)
+    s.connect(P["unix"])
+    s.sendall(P["marker"].encode())
+    s.close()
+except OSError:
+    pass'''],
 }
 # the attacks graded again without the sandbox, where they must work (the harmless ones)
 CONTROLS = ("meta_path", "kinlib_by_path", "instructor_source", "reads_classmate", "stdout_forge",
-            "files", "patch_grader", "snoop", "listener")
+            "files", "patch_grader", "snoop", "listener", "unix_client")
 
 
 def kill_marked(marker: str) -> None:
@@ -362,6 +394,7 @@ class Run:
         self.marker = f"kinlib-hostile-{secrets.token_hex(6)}"
         self.marker_sleep = f"61.{secrets.randbelow(10**9):09d}"
         self.port = free_port()
+        self.unix, self.unix_got = self._unix_daemon()
         self.before = digest(self.grader)
         self.subs = self.root / "subs"
         self.subs.mkdir()
@@ -369,7 +402,8 @@ class Run:
         P = {"root": str(self.root), "grader": str(self.grader), "home": str(self.home),
              "canary": str(self.canary), "site": str(self.site), "secret": str(self.secret),
              "secret_text": self.secret_text, "env_canary": self.env_canary,
-             "marker": self.marker, "marker_sleep": self.marker_sleep, "port": self.port}
+             "marker": self.marker, "marker_sleep": self.marker_sleep, "port": self.port,
+             "unix": str(self.unix)}
         prelude = f"P = {P!r}"
         self.paths = {}
         for kind in kinds:
@@ -421,9 +455,32 @@ class Run:
         self.start(kinds, **kwargs)
         return self.finish()
 
+    def _unix_daemon(self):
+        """A root daemon's Unix socket in the run's folder, writable by every user: its path
+        and the list of what reached it."""
+        path, got = self.root / "daemon.sock", []
+        server = socket.socket(socket.AF_UNIX)
+        server.bind(str(path))
+        os.chmod(path, 0o666)
+        server.listen(8)
+
+        def serve() -> None:
+            while True:
+                try:
+                    conn, _ = server.accept()
+                except OSError:
+                    return
+                got.append(conn.recv(200).decode(errors="replace"))
+                conn.close()
+
+        threading.Thread(target=serve, daemon=True).start()
+        self._unix_server = server
+        return path, got
+
     def cleanup(self) -> None:
         kill_marked(self.marker)
         kill_marked(self.marker_sleep)
+        self._unix_server.close()
 
 
 KINDS = list(ATTACKS)
@@ -454,7 +511,8 @@ def sandboxed_run(base: Path, name: str, **kwargs):
 NO_MARKS = ("meta_path", "kinlib_by_path", "instructor_source", "reads_classmate")
 HONEST_KINDS = ("stdout_forge", "cell_flood", "odd_index", "no_source", "sympy_bombs",
                 "chatty_cell", "signals", "daemon", "fork_many", "listener", "files",
-                "patch_grader", "site_pth", "snoop", "ptrace")
+                "patch_grader", "site_pth", "snoop", "ptrace", "deaf", "deep_dir",
+                "unix_client")
 
 
 def check_batch(run, results, tier: str) -> None:
@@ -518,6 +576,7 @@ def check_slow(results) -> None:
 def check_nothing_left(run) -> None:
     assert host_pids(run.marker) == [] and host_pids(run.marker_sleep) == []
     assert port_free(run.port)
+    assert run.unix_got == [], run.unix_got  # (no Unix socket outside reached either)
 
 
 def check_untouched(run) -> None:

@@ -114,3 +114,4 @@ def test_control_without_the_sandbox_the_attacks_work(control):
     stolen = stolen["diagnoses"][0]["message"]
     assert run.env_canary in stolen and run.secret_text in stolen
     assert listening, "the listener did not outlive the unsandboxed grading"
+    assert run.unix_got == [run.marker], run.unix_got

@@ -216,3 +216,14 @@ def test_the_assignment_is_told_from_a_canvas_download_name(tmp_path):
         assert _which(empty, tmp_path / name, None) == want, name
     with pytest.raises(KinlibError, match="--assignment"):
         _which(empty, tmp_path / "smithbob_12346_homework.ipynb", None)
+
+
+def test_a_lone_surrogate_in_a_students_text_cannot_make_the_report_unprintable():
+    """``raise ValueError("\\ud800")`` in a submission: the report (printed, then written)
+    must still encode, as the whole batch's output depends on it."""
+    r = graded_result()
+    r["cells"][0]["error"] = "ValueError: \ud800 nope \ue000"
+    r["checks"][0]["diagnoses"][0]["message"] = "raised ValueError: \udfff"
+    text = format_report(r)
+    assert text.encode("utf-8")  # (raised UnicodeEncodeError before)
+    assert "\\ud800 nope \\ue000" in text and "\\udfff" in text

@@ -18,8 +18,9 @@ root, before any submission code runs), in this order:
    Unix socket out of its own domain. Rules are only added, never removed, so directories
    that must stay hidden (the runtime's ``site-packages``) are left out by giving their
    siblings one rule each (:func:`read_rules`);
-7. seccomp (x86-64 and AArch64): sockets of any family but ``AF_UNIX`` refused (UDP, raw
-   and packet sockets, which Landlock does not cover), io_uring (which would bypass that),
+7. seccomp (x86-64 and AArch64): ``socket`` refused for every family (UDP, raw and packet
+   sockets, which Landlock does not cover, and Unix sockets, whose pathnames Landlock does
+   not guard: a root daemon's socket); ``socketpair`` stays. io_uring (which would bypass that),
    new namespaces, mounts, ``ptrace``, ``bpf``, the kernel keyring and the other calls
    listed in :data:`DENIED`; ``clone3`` answers ENOSYS, so the C library falls back to
    ``clone``, whose flags are checked; system calls of another ABI (x32, i386) end it.
@@ -244,8 +245,7 @@ def seccomp_program(arch: str) -> bytes:
         p.append((_JEQ, nr[name], "deny", 0))
     p += [(_JEQ, nr["clone3"], "enosys", 0), (_JEQ, nr["socket"], "socket", 0),
           (_JEQ, nr["clone"], "clone", 0), (_RET, _ALLOW, 0, 0),
-          ("label", "socket"), (_LD, 16, 0, 0),  # the domain (the low half of argument 0)
-          (_JEQ, socket.AF_UNIX, "allow", 0), (_RET, _errno(errno.EACCES), 0, 0),
+          ("label", "socket"), (_RET, _errno(errno.EACCES), 0, 0),  # (socketpair stays)
           ("label", "clone"), (_LD, 16, 0, 0), (_JSET, _CLONE_NEW, "deny", "allow"),
           ("label", "allow"), (_RET, _ALLOW, 0, 0),
           ("label", "deny"), (_RET, _errno(errno.EPERM), 0, 0),
@@ -307,7 +307,7 @@ def confine(spec: dict) -> dict:
 def probe(request: dict) -> dict:
     """What a confined process can still do: which of ``request["read"]`` it can open,
     which of ``request["write"]`` (directories) it can create a file in, whether it can
-    make an IPv4 or IPv6 socket, and whether the libraries it needs import."""
+    make an IPv4, IPv6 or Unix socket, and whether the libraries it needs import."""
     def opens(path: str) -> bool:
         try:
             os.close(os.open(path, os.O_RDONLY | os.O_CLOEXEC))
@@ -328,7 +328,7 @@ def probe(request: dict) -> dict:
         return True
 
     network = []
-    for family in (socket.AF_INET, socket.AF_INET6):
+    for family in (socket.AF_INET, socket.AF_INET6, socket.AF_UNIX):
         try:
             socket.socket(family, socket.SOCK_DGRAM).close()
             network.append(family.name)

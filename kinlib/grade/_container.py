@@ -19,7 +19,7 @@ it, before any of the submission's code runs):
   directory writable, nothing else (not ``/proc``, not ``/tmp``, not the grader's files);
   from Landlock ABI 4 it cannot ``bind`` or ``connect`` TCP sockets, from ABI 6 not signal
   or reach abstract Unix sockets outside itself;
-- on x86-64 and AArch64, a seccomp filter refuses every socket but ``AF_UNIX``, io_uring,
+- on x86-64 and AArch64, a seccomp filter refuses every socket (Unix ones too), io_uring,
   namespaces, mounts, ``ptrace``, ``bpf`` and the kernel keyring;
 - ends with everything it started: when the process ends, every process of its uid is
   killed (:func:`sweep`), and what it left in the world-writable directories is removed.
@@ -28,8 +28,8 @@ Without Landlock, files are protected by their permissions only. Before grading,
 (:func:`kinlib.grade._tiers.find_isolation`, :func:`judge_probe`) starts one confined
 process and proves the promises hold here: it is not root, cannot open the grader's
 kinlib (the reference, the grader's code) or the paths the caller names (the secret, the
-results, other hand-ins), cannot create a file where results go, cannot make an IPv4 or
-IPv6 socket (where seccomp is available), and can import the libraries a submission may
+results, other hand-ins), cannot create a file where results go, cannot make an IPv4,
+IPv6 or Unix socket (where seccomp is available), and can import the libraries a submission may
 use. If any fails, the tier is refused, naming the
 fix (``chmod -R go-rwx``, a world-readable Python).
 
@@ -69,15 +69,6 @@ NOFILE = 1024
 DEVICES = ("/dev/null", "/dev/zero", "/dev/full", "/dev/random", "/dev/urandom")
 #: world-writable directories emptied of what a submission's uid left there
 SHARED_DIRS = ("/tmp", "/var/tmp", "/dev/shm")
-_SWEEP = ("import os, signal, time\n"
-          "for _ in range(200):\n"
-          "    try:\n"
-          "        os.kill(-1, signal.SIGKILL)\n"
-          "    except ProcessLookupError:\n"
-          "        break\n"
-          "    time.sleep(0.005)\n")
-
-
 @dataclass(frozen=True)
 class Launch:
     """One confined process as started: its uid and working directory."""
@@ -134,7 +125,7 @@ class Container:
     def cleanup(self, launch: Launch) -> None:
         """Remove the launch's working directory and what its uid left in the shared
         directories (after :meth:`end`)."""
-        shutil.rmtree(launch.workdir, ignore_errors=True)
+        _remove(launch.workdir)
         for folder in SHARED_DIRS:
             try:
                 entries = list(os.scandir(folder))
@@ -146,7 +137,7 @@ class Container:
                     if st.st_uid != launch.uid:
                         continue
                     if stat.S_ISDIR(st.st_mode):
-                        shutil.rmtree(entry.path, ignore_errors=True)
+                        _remove(entry.path)
                     else:
                         os.unlink(entry.path)
                 except OSError:
@@ -154,24 +145,19 @@ class Container:
 
 
 def sweep(uid: int, python: str = sys.executable) -> None:
-    """Kill every process of ``uid`` (root only). First a process of that uid, made for the
-    purpose, sends SIGKILL to every process it may signal until there are none (one
-    ``kill(-1)`` reaches a whole process tree at once, forks included); then, in case one of
-    them killed that process first (the same uid may signal it, where Landlock's signal
-    scope is missing), the grader itself kills what ``/proc`` still shows of the uid."""
-    try:
-        subprocess.run([python, "-I", "-S", "-c", _SWEEP], user=uid, group=uid,
-                       extra_groups=[], env={}, cwd="/", stdin=subprocess.DEVNULL,
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=30)
-    except (OSError, subprocess.SubprocessError):
-        pass
-    for _ in range(200):
+    """Kill every live process of ``uid`` (root only): the grader kills each process
+    ``/proc`` shows for the uid, again until none is left. Nothing of that uid does the
+    killing (a process of the same uid could stop or kill it first, where Landlock's signal
+    scope is missing), and the uid's processes can neither hide from ``/proc`` nor signal
+    root. A process forking meanwhile is found in the next round; there are at most
+    ``NPROC`` of them at once. (``python`` is kept for callers; it is not run.)"""
+    for _ in range(1000):
         left = _processes_of(uid)
         if not left:
             return
         for pid in left:
             _kill_if_owned(pid, uid)
-        time.sleep(0.005)
+        time.sleep(0.002)
 
 
 def _uid_and_state(pid: str) -> tuple[int | None, str]:
@@ -218,6 +204,22 @@ def _kill_if_owned(pid: str, uid: int) -> None:
     finally:
         if fd is not None:
             os.close(fd)
+
+
+def _remove(path: str) -> None:
+    """Remove a tree a submission made, however deep (``rm -rf``, which walks it without
+    recursion and follows no symbolic link, on this file system only; shutil's rmtree,
+    which recurses once per level, where there is no ``rm``); never raises."""
+    rm = shutil.which("rm", path="/usr/bin:/bin")
+    try:
+        if rm:
+            subprocess.run([rm, "-rf", "--one-file-system", "--", path], env={},
+                           stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL, timeout=120)
+        else:
+            shutil.rmtree(path, ignore_errors=True)
+    except Exception:  # (a RecursionError, a timeout: the tree stays, the grading goes on)
+        pass
 
 
 def memory_limit_mb(cgroup_file: str = "/proc/self/cgroup",

@@ -188,7 +188,8 @@ class _Session:
             return i if type(i) is int and i in sent else None  # forged or odd: ignored
 
         try:
-            w.request({"op": "cells", "cells": batch})
+            w.request({"op": "cells", "cells": batch},  # (read in time, or the process dies)
+                      timeout=max(0.05, min(self.cell_timeout, end - time.monotonic())))
             while True:
                 now = time.monotonic()
                 due = min(end, cell_end) if cell_end is not None else end
@@ -241,15 +242,16 @@ def _run_check(session: _Session, check: Check, cases: list[tuple]) -> list[tupl
     # forge replies for this one (replies to earlier calls, late or forged, are dropped)
     try:
         w = session.ready()
+        # the whole call (its request, a flood of replies too), and the submission's deadline
+        end = min(time.monotonic() + check.time_limit * (len(cases) + 1), session.deadline)
         w.request({"op": "call", "id": call_id, "name": check.function,
-                   "cases": [encode(c, exact=True) for c in cases]})  # (pi/2 stays pi/2)
+                   "cases": [encode(c, exact=True) for c in cases]},  # (pi/2 stays pi/2)
+                  timeout=max(0.05, min(check.time_limit, end - time.monotonic())))
     except WorkerDied as exc:
         return [("died", str(exc))] * len(cases)
     except OutOfTime:
         return [("not run", _out_of_time(session))] * len(cases)
     k = 0
-    # the whole call (a flood of replies too), and the submission's own deadline
-    end = min(time.monotonic() + check.time_limit * (len(cases) + 1), session.deadline)
     try:
         while True:
             left = end - time.monotonic()
@@ -514,16 +516,20 @@ def summary(results: list[dict]) -> str:
 
 def _printable(line: str) -> str:
     r"""``line`` with every control or format character (newlines, carriage returns,
-    terminal escapes, bidirectional overrides) shown escaped: text from a student's code
-    cannot start a line of its own, hide the real total, or recolour the terminal.
+    terminal escapes, bidirectional overrides), lone surrogate, private-use or unassigned
+    one shown escaped: text from a student's code cannot start a line of its own, hide the
+    real total, recolour the terminal, or make the report unprintable.
 
     >>> print(_printable("ok\x1b[2K\r  total: 38\n"))
     ok\x1b[2K\r  total: 38\n
+    >>> _printable("\ud800 nope").encode("utf-8")
+    b'\\ud800 nope'
     """
     import unicodedata
 
     return "".join(ch.encode("unicode_escape").decode("ascii")
-                   if unicodedata.category(ch) in ("Cc", "Cf") else ch for ch in line)
+                   if unicodedata.category(ch) in ("Cc", "Cf", "Cs", "Co", "Cn") else ch
+                   for ch in line)
 
 
 def check_lines(check: dict) -> list[str]:

@@ -20,6 +20,7 @@ from __future__ import annotations
 import json
 import os
 import resource
+import select
 import selectors
 import shutil
 import signal
@@ -39,6 +40,11 @@ __all__ = ["Worker", "WorkerDied", "WorkerTimeout", "BLOCKED"]
 #: modules a submission may not import: kinlib and the peer libraries that would do the work
 BLOCKED = ("kinlib", "scipy", "pytransform3d", "roboticstoolbox", "spatialmath",
            "modern_robotics", "transforms3d", "pinocchio", "pin")
+
+#: seconds a request may take to be read by the student's process (a request is at most a
+#: few hundred kilobytes: the cells or one function's cases)
+REQUEST_TIMEOUT = 30.0
+
 
 class WorkerDied(RuntimeError):
     """The student's process ended (or sent something unreadable and was killed)."""
@@ -104,21 +110,34 @@ class Worker:
         os.close(to_child_r)
         os.close(from_child_w)
         os.set_blocking(self._from_child, False)
+        os.set_blocking(self._to_child, False)  # (requests are written with a deadline)
         self._buffer = bytearray()
         self._selector = selectors.DefaultSelector()
         self._selector.register(self._from_child, selectors.EVENT_READ)
         self.alive = True
 
     # -- talking ----------------------------------------------------------------------------
-    def request(self, message: dict) -> None:
-        """Send one request (``WorkerDied`` if the process is gone)."""
+    def request(self, message: dict, timeout: float = REQUEST_TIMEOUT) -> None:
+        """Send one request within ``timeout`` seconds: ``WorkerDied`` if the process is
+        gone, or does not read it in time (a submission can stop reading its requests, or
+        shrink their pipe: the grader never waits on it for ever; it is then killed)."""
         if not self.alive:
             raise WorkerDied("the process is not running")
         data = dumps(message)
+        deadline = time.monotonic() + timeout
         try:
             view = memoryview(data)
             while view:
-                n = os.write(self._to_child, view)
+                try:
+                    n = os.write(self._to_child, view)
+                except BlockingIOError:
+                    left = deadline - time.monotonic()
+                    if left <= 0:
+                        self.kill()
+                        raise WorkerDied(f"it did not read the grader's request within "
+                                         f"{timeout:g} s") from None
+                    select.select([], [self._to_child], [], min(left, 1.0))
+                    continue
                 view = view[n:]
         except OSError:  # BrokenPipeError: it has ended
             why = self._death()
