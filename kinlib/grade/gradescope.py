@@ -347,18 +347,23 @@ def run(root="/autograder") -> int:
             isolation = _isolation_or_refusal(config, protected)
         except SandboxUnavailable:
             return 2
-        result = grade(sub, name, unsandboxed=isolation is None, **protected, **kwargs)
+        try:
+            result = grade(sub, name, unsandboxed=isolation is None, **protected, **kwargs)
+        except Exception as exc:  # never leave Gradescope without a results.json
+            result = not_graded(sub, name, "the grader failed on this submission: "
+                                           f"{type(exc).__name__}: {str(exc)[:300]}",
+                                load_assignment(name).max_score)
         folder = root / "submission"
         result["handed_in"] = str(sub.relative_to(folder))
         result["ignored"] = sorted(str(p.relative_to(folder)) for p in folder.rglob("*.ipynb")
                                    if p != sub and ".ipynb_checkpoints" not in p.parts)
+    data = results_json(result, config.get("visibility", "visible"), time.monotonic() - start)
+    tmp = results / "results.json.tmp"  # written first: whatever the printing meets
+    tmp.write_text(json.dumps(data, indent=1, allow_nan=False) + "\n", encoding="utf-8")
+    os.replace(tmp, results / "results.json")
     print(format_report(result))  # the instructor's view (stdout is hidden from students)
     print(f"isolation: {result.get('sandbox') or 'none'}; memory per process: {memory} MiB "
           f"(container limit: {f'{container} MiB' if container else 'none found'})")
-    data = results_json(result, config.get("visibility", "visible"), time.monotonic() - start)
-    tmp = results / "results.json.tmp"
-    tmp.write_text(json.dumps(data, indent=1, allow_nan=False) + "\n", encoding="utf-8")
-    os.replace(tmp, results / "results.json")
     return 0
 
 
