@@ -155,15 +155,21 @@ def check_results(data: dict) -> None:
     assert abs(sum(t["score"] for t in data["tests"]) - data["score"]) < 0.05
 
 
-def unpack(zip_path: Path, root: Path) -> Path:
-    """Gradescope's layout: the zip's contents in root/source, the submission, results."""
-    source = root / "source"
+def extract(zip_path: Path, source: Path) -> Path:
+    """The zip's contents in ``source``, with their permission bits (as unzip restores
+    them; extractall drops them)."""
     with zipfile.ZipFile(zip_path) as z:
         z.extractall(source)
-        for info in z.infolist():  # (extractall drops the permission bits)
+        for info in z.infolist():
             mode = info.external_attr >> 16
             if mode:
                 os.chmod(source / info.filename, mode)
+    return source
+
+
+def unpack(zip_path: Path, root: Path) -> Path:
+    """Gradescope's layout: the zip's contents in root/source, the submission, results."""
+    source = extract(zip_path, root / "source")
     (root / "submission").mkdir()
     (root / "results").mkdir()
     return source

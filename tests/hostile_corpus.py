@@ -23,12 +23,13 @@ import sys
 import threading
 from pathlib import Path
 
+import pytest
 from grading_helpers import ROOT, solution_code, write_notebook
 from lab_harness import free_port
 from processes import host_pids
 
 import kinlib
-from kinlib.grade import load_assignment
+from kinlib.grade import format_report, load_assignment
 
 ROT = '''import numpy as np
 
@@ -507,7 +508,7 @@ def sandboxed_run(base: Path, name: str, **kwargs):
     return run, results
 
 
-# -- what a sandboxed run of the corpus must show, whichever the tier -------------------------
+# -- what a sandboxed run of the corpus must show, whichever the tier (CorpusChecks) --------
 NO_MARKS = ("meta_path", "kinlib_by_path", "instructor_source", "reads_classmate")
 HONEST_KINDS = ("stdout_forge", "cell_flood", "odd_index", "no_source", "sympy_bombs",
                 "chatty_cell", "signals", "daemon", "fork_many", "listener", "files",
@@ -515,83 +516,92 @@ HONEST_KINDS = ("stdout_forge", "cell_flood", "odd_index", "no_source", "sympy_b
                 "unix_client")
 
 
-def check_batch(run, results, tier: str) -> None:
-    """Every submission graded, reported and written, in ``tier``; no forged line."""
-    assert run.returncode == 0, run.stderr[-2000:]
-    assert all(r is not None and r["graded"] for r in results.values()), \
-        [k for k, r in results.items() if r is None or not r["graded"]]
-    assert f"graded {len(results)} of {len(results)} submission(s)" in run.stderr
-    assert not run.forged, "a forged line reached the grader's output"
-    for r in results.values():  # every result was written, and says how it was isolated
-        assert r["tier"] == tier and "warning" not in r, (r["tier"], r.get("warning"))
-        saved = run.out / f"{Path(r['submission']).stem}.grade.json"
-        assert json.loads(saved.read_text())["score"] == r["score"]
+class CorpusChecks:
+    """The tests every isolation tier passes on the corpus: a test module subclasses this
+    (collected there), names its ``tier`` and gives a ``corpus`` fixture, ``(run, results)``
+    of :func:`sandboxed_run` or its like."""
 
+    tier = ""
 
-def check_no_marks(results, kind: str) -> None:
-    assert score(results, kind) == 0, {c["function"]: c["diagnoses"]
-                                       for c in results[kind]["checks"]}
+    def test_the_whole_batch_is_graded_and_reported(self, corpus):
+        """Every submission graded, reported and written, in the tier; no forged line."""
+        run, results = corpus
+        assert run.returncode == 0, run.stderr[-2000:]
+        assert all(r is not None and r["graded"] for r in results.values()), \
+            [k for k, r in results.items() if r is None or not r["graded"]]
+        assert f"graded {len(results)} of {len(results)} submission(s)" in run.stderr
+        assert not run.forged, "a forged line reached the grader's output"
+        for r in results.values():  # every result was written, and says how it was isolated
+            assert r["tier"] == self.tier and "warning" not in r, (r["tier"], r.get("warning"))
+            saved = run.out / f"{Path(r['submission']).stem}.grade.json"
+            assert json.loads(saved.read_text())["score"] == r["score"]
 
+    @pytest.mark.parametrize("kind", NO_MARKS)
+    def test_no_marks_without_solving(self, corpus, kind):
+        results = corpus[1]
+        assert score(results, kind) == 0, {c["function"]: c["diagnoses"]
+                                           for c in results[kind]["checks"]}
 
-def check_table(run, results) -> None:
-    hidden = {c["function"]: c for c in results["table"]["checks"]}["rotx"]
-    assert hidden["passed"] == 7 and hidden["total"] == 30  # only the 7 fixed angles
-    assert results["table"]["cases"] == "secret"
-    public = run.public["table"]  # the student's own run: all right
-    assert public["cases"] == "public (seed 0)"
-    assert {c["function"]: c for c in public["checks"]}["rotx"]["passed"] == 30
+    def test_a_table_of_the_public_cases_fails_the_hidden_ones(self, corpus):
+        run, results = corpus
+        hidden = {c["function"]: c for c in results["table"]["checks"]}["rotx"]
+        assert hidden["passed"] == 7 and hidden["total"] == 30  # only the 7 fixed angles
+        assert results["table"]["cases"] == "secret"
+        public = run.public["table"]  # the student's own run: all right
+        assert public["cases"] == "public (seed 0)"
+        assert {c["function"]: c for c in public["checks"]}["rotx"]["passed"] == 30
 
+    @pytest.mark.parametrize("kind", HONEST_KINDS)
+    def test_attacks_leave_the_honest_score(self, corpus, kind):
+        results = corpus[1]
+        checks = {c["function"]: c for c in results[kind]["checks"]}
+        assert score(results, kind) == HONEST, {f: c["diagnoses"] for f, c in checks.items()
+                                                if f in ("rotx", "roty", "rotz")}
 
-def check_honest(results, kind: str) -> None:
-    checks = {c["function"]: c for c in results[kind]["checks"]}
-    assert score(results, kind) == HONEST, {f: c["diagnoses"] for f, c in checks.items()
-                                            if f in ("rotx", "roty", "rotz")}
+    def test_forged_text_and_odd_values_stay_inside_their_own_check(self, corpus):
+        results = corpus[1]
+        assert score(results, "fake_total") == HONEST - 2
+        report = format_report(results["fake_total"])
+        assert [ln for ln in report.splitlines() if ln.lstrip().startswith("total:")] == \
+            ["  total: 4 / 38"]
+        assert "\x1b" not in report and "\u202e" not in report and "\r" not in report
+        assert score(results, "decode_raise") == HONEST - 2
+        bombs = {c["function"]: c
+                 for c in results["sympy_bombs"]["checks"]}["euler_zyx_symbolic"]
+        assert bombs["passed"] == 0 and bombs["total"] == 4  # one failed case each
+        assert [d["key"] for d in bombs["diagnoses"]] == ["type"], bombs["diagnoses"]
+        assert "cannot read" in bombs["diagnoses"][0]["message"]
+        assert len(json.dumps(results["cell_flood"])) < 50_000
+        chatty = results["chatty_cell"]["cells"]
+        assert any("skipped" in c["error"] for c in chatty), chatty
 
+    def test_slow_cases_stop_at_the_submission_deadline(self, corpus):
+        results = corpus[1]
+        result = results["slow_cases"]
+        assert score(results, "slow_cases") < 1
+        messages = [d["message"] for c in result["checks"] for d in c["diagnoses"]]
+        assert any("all of its time (10 s" in m for m in messages), messages
 
-def check_forged_text(results) -> None:
-    from kinlib.grade import format_report
+    def test_nothing_is_left_running_or_listening(self, corpus):
+        run = corpus[0]
+        assert host_pids(run.marker) == [] and host_pids(run.marker_sleep) == []
+        assert port_free(run.port)
+        assert run.unix_got == [], run.unix_got  # (no Unix socket outside reached either)
 
-    assert score(results, "fake_total") == HONEST - 2
-    report = format_report(results["fake_total"])
-    assert [ln for ln in report.splitlines() if ln.lstrip().startswith("total:")] == \
-        ["  total: 4 / 38"]
-    assert "\x1b" not in report and "\u202e" not in report and "\r" not in report
-    assert score(results, "decode_raise") == HONEST - 2
-    bombs = {c["function"]: c for c in results["sympy_bombs"]["checks"]}["euler_zyx_symbolic"]
-    assert bombs["passed"] == 0 and bombs["total"] == 4  # one failed case each
-    assert [d["key"] for d in bombs["diagnoses"]] == ["type"], bombs["diagnoses"]
-    assert "cannot read" in bombs["diagnoses"][0]["message"]
-    assert len(json.dumps(results["cell_flood"])) < 50_000
-    chatty = results["chatty_cell"]["cells"]
-    assert any("skipped" in c["error"] for c in chatty), chatty
+    def test_the_machine_is_untouched_and_the_next_run_is_normal(self, corpus):
+        run = corpus[0]
+        assert (run.home / ".bashrc").read_text() == "# canary\n"
+        assert run.canary.read_text() == "canary\n"
+        assert not (run.root / "big.bin").exists()
+        assert list(run.site.iterdir()) == []
+        grader, assignments = run.after
+        assert grader == run.before, {k for k in set(grader) | set(run.before)
+                                      if grader.get(k) != run.before.get(k)}
+        assert assignments == {f"source/{k}": v for k, v in digest(ROOT / "source").items()}
+        assert run.public["classmate.ipynb"]["score"] == FULL
 
-
-def check_slow(results) -> None:
-    result = results["slow_cases"]
-    assert score(results, "slow_cases") < 1
-    messages = [d["message"] for c in result["checks"] for d in c["diagnoses"]]
-    assert any("all of its time (10 s" in m for m in messages), messages
-
-
-def check_nothing_left(run) -> None:
-    assert host_pids(run.marker) == [] and host_pids(run.marker_sleep) == []
-    assert port_free(run.port)
-    assert run.unix_got == [], run.unix_got  # (no Unix socket outside reached either)
-
-
-def check_untouched(run) -> None:
-    assert (run.home / ".bashrc").read_text() == "# canary\n"
-    assert run.canary.read_text() == "canary\n"
-    assert not (run.root / "big.bin").exists()
-    assert list(run.site.iterdir()) == []
-    grader, assignments = run.after
-    assert grader == run.before, {k for k in set(grader) | set(run.before)
-                                  if grader.get(k) != run.before.get(k)}
-    assert assignments == {f"source/{k}": v for k, v in digest(ROOT / "source").items()}
-    assert run.public["classmate.ipynb"]["score"] == FULL
-
-
-def check_secrets(run, results) -> None:
-    text = json.dumps(results) + run.stdout + run.stderr
-    assert run.secret_text not in text and run.env_canary not in text
-    assert score(results, "snoop") == HONEST and score(results, "ptrace") == HONEST
+    def test_secrets_do_not_leak(self, corpus):
+        run, results = corpus
+        text = json.dumps(results) + run.stdout + run.stderr
+        assert run.secret_text not in text and run.env_canary not in text
+        assert score(results, "snoop") == HONEST and score(results, "ptrace") == HONEST

@@ -33,6 +33,7 @@ from grading_helpers import (
     NOT_NEEDED,
     ROOT,
     check_results,
+    extract,
     hand_in,
     solution_code,
     unpack,
@@ -380,17 +381,8 @@ def test_a_hostile_submission_is_contained_and_its_control_without_isolation_is_
         hc.kill_marked(marker)
         evidence.unlink(missing_ok=True)
         shutil.rmtree(root / "source")  # as setup.sh left it
-        unpack_source(zip_path, root)
-
-
-def unpack_source(zip_path: Path, root: Path) -> None:
-    with zipfile.ZipFile(zip_path) as z:
-        z.extractall(root / "source")
-        for info in z.infolist():
-            mode = info.external_attr >> 16
-            if mode:
-                os.chmod(root / "source" / info.filename, mode)
-    subprocess.run(["chmod", "-R", "go-rwx", str(root / "source")], check=True)
+        extract(zip_path, root / "source")
+        subprocess.run(["chmod", "-R", "go-rwx", str(root / "source")], check=True)
 
 
 # -- the hostile corpus in the container tier ---------------------------------------------
@@ -412,39 +404,7 @@ def corpus(gradescope, memory_cgroup):
         shutil.rmtree(base, ignore_errors=True)
 
 
-def test_the_corpus_is_graded_in_the_container_tier(corpus):
-    hc.check_batch(*corpus, "container")
+class TestInTheContainerTier(hc.CorpusChecks):
+    """The corpus's checks (tests/hostile_corpus.py), in the container tier."""
 
-
-@pytest.mark.parametrize("kind", hc.NO_MARKS)
-def test_no_marks_without_solving_in_the_container_tier(corpus, kind):
-    hc.check_no_marks(corpus[1], kind)
-
-
-def test_a_table_of_the_public_cases_fails_in_the_container_tier(corpus):
-    hc.check_table(*corpus)
-
-
-@pytest.mark.parametrize("kind", hc.HONEST_KINDS)
-def test_attacks_leave_the_honest_score_in_the_container_tier(corpus, kind):
-    hc.check_honest(corpus[1], kind)
-
-
-def test_forged_text_and_odd_values_in_the_container_tier(corpus):
-    hc.check_forged_text(corpus[1])
-
-
-def test_slow_cases_stop_at_the_deadline_in_the_container_tier(corpus):
-    hc.check_slow(corpus[1])
-
-
-def test_nothing_is_left_running_or_listening_after_the_container_tier(corpus):
-    hc.check_nothing_left(corpus[0])
-
-
-def test_the_machine_is_untouched_by_the_container_tier(corpus):
-    hc.check_untouched(corpus[0])
-
-
-def test_secrets_do_not_leak_from_the_container_tier(corpus):
-    hc.check_secrets(*corpus)
+    tier = "container"

@@ -50,7 +50,7 @@ def runs(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def sandboxed(runs):
+def corpus(runs):
     return runs[0]
 
 
@@ -59,43 +59,13 @@ def control(runs):
     return runs[1]
 
 
-def test_the_whole_batch_is_graded_and_reported(sandboxed):
-    hc.check_batch(*sandboxed, "bubblewrap")
-    assert all(r["sandbox"].startswith("bubblewrap") for r in sandboxed[1].values())
+class TestInBubblewrap(hc.CorpusChecks):
+    """The corpus's checks (tests/hostile_corpus.py), in the bubblewrap sandbox."""
 
+    tier = "bubblewrap"
 
-@pytest.mark.parametrize("kind", hc.NO_MARKS)
-def test_no_marks_without_solving(sandboxed, kind):
-    hc.check_no_marks(sandboxed[1], kind)
-
-
-def test_a_table_of_the_public_cases_fails_the_hidden_ones(sandboxed):
-    hc.check_table(*sandboxed)
-
-
-@pytest.mark.parametrize("kind", hc.HONEST_KINDS)
-def test_attacks_leave_the_honest_score(sandboxed, kind):
-    hc.check_honest(sandboxed[1], kind)
-
-
-def test_forged_text_and_odd_values_stay_inside_their_own_check(sandboxed):
-    hc.check_forged_text(sandboxed[1])
-
-
-def test_slow_cases_stop_at_the_submission_deadline(sandboxed):
-    hc.check_slow(sandboxed[1])
-
-
-def test_nothing_is_left_running_or_listening(sandboxed):
-    hc.check_nothing_left(sandboxed[0])
-
-
-def test_the_machine_is_untouched_and_the_next_run_is_normal(sandboxed):
-    hc.check_untouched(sandboxed[0])
-
-
-def test_secrets_do_not_leak(sandboxed):
-    hc.check_secrets(*sandboxed)
+    def test_every_result_names_bubblewrap(self, corpus):
+        assert all(r["sandbox"].startswith("bubblewrap") for r in corpus[1].values())
 
 
 # -- the control: the same attacks without the sandbox succeed ------------------------------

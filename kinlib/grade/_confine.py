@@ -120,9 +120,10 @@ def _check(result: int) -> int:
     return result
 
 
-def _prctl(option: int, arg) -> None:
-    _check(_c().prctl(ctypes.c_int(option), arg, ctypes.c_ulong(0), ctypes.c_ulong(0),
-                      ctypes.c_ulong(0)))
+def _prctl(option: int, *args) -> None:
+    """``prctl(option, *args)``, the unused arguments 0; OSError on failure."""
+    rest = [ctypes.c_ulong(0)] * (4 - len(args))
+    _check(_c().prctl(ctypes.c_int(option), *args, *rest))
 
 
 def landlock_abi() -> int:
@@ -262,8 +263,7 @@ def _seccomp(arch: str) -> None:
     code = seccomp_program(arch)
     buf = ctypes.create_string_buffer(code, len(code))
     prog = _Prog(len(code) // 8, ctypes.cast(buf, ctypes.c_void_p))
-    _check(_c().prctl(ctypes.c_int(_PR_SET_SECCOMP), ctypes.c_ulong(_SECCOMP_MODE_FILTER),
-                      ctypes.byref(prog), ctypes.c_ulong(0), ctypes.c_ulong(0)))
+    _prctl(_PR_SET_SECCOMP, ctypes.c_ulong(_SECCOMP_MODE_FILTER), ctypes.byref(prog))
 
 
 def confine(spec: dict) -> dict:

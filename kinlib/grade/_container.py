@@ -120,7 +120,7 @@ class Container:
 
     def end(self, launch: Launch) -> None:
         """Kill every process of the launch's uid (:func:`sweep`)."""
-        sweep(launch.uid, self.python)
+        sweep(launch.uid)
 
     def cleanup(self, launch: Launch) -> None:
         """Remove the launch's working directory and what its uid left in the shared
@@ -144,13 +144,13 @@ class Container:
                     pass
 
 
-def sweep(uid: int, python: str = sys.executable) -> None:
+def sweep(uid: int) -> None:
     """Kill every live process of ``uid`` (root only): the grader kills each process
     ``/proc`` shows for the uid, again until none is left. Nothing of that uid does the
     killing (a process of the same uid could stop or kill it first, where Landlock's signal
     scope is missing), and the uid's processes can neither hide from ``/proc`` nor signal
     root. A process forking meanwhile is found in the next round; there are at most
-    ``NPROC`` of them at once. (``python`` is kept for callers; it is not run.)"""
+    ``NPROC`` of them at once."""
     for _ in range(1000):
         left = _processes_of(uid)
         if not left:
@@ -181,8 +181,8 @@ def _processes_of(uid: int) -> list[str]:
         pids = [p for p in os.listdir("/proc") if p.isdigit()]
     except OSError:
         return []
-    return [p for p in pids if _uid_and_state(p) in ((uid, "R"), (uid, "S"), (uid, "D"),
-                                                     (uid, "T"), (uid, "t"), (uid, "I"))]
+    owners = ((p, *_uid_and_state(p)) for p in pids)
+    return [p for p, owner, state in owners if owner == uid and state not in ("Z", "X")]
 
 
 def _kill_if_owned(pid: str, uid: int) -> None:
@@ -296,7 +296,7 @@ def probe_request(read=(), write=()) -> dict:
     """What the probe asks a confined process: kinlib (the reference, the grader's code) and
     ``read`` must not open, kinlib and ``write`` must not take a new file, the libraries a
     submission may use must import."""
-    here = str(Path(__file__).resolve().parents[1])
+    here = os.path.realpath(sys.modules[__package__.split(".")[0]].__path__[0])  # (kinlib)
     return {"op": "probe", "read": [here, *read], "write": [here, *write],
             "imports": ["numpy", "sympy", "matplotlib"]}
 
