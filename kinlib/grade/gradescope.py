@@ -312,10 +312,11 @@ def check(root="/autograder") -> int:
         isolation = _isolation_or_refusal(config, _protected(root))
     except SandboxUnavailable:
         return 2
-    memory = fit_memory(config.get("memory_mb"), memory_limit_mb())
+    container = memory_limit_mb()
+    memory = fit_memory(config.get("memory_mb"), container)
     print(f"kinlib autograder: submissions run in "
           f"{isolation.describe() if isolation else 'NO sandbox (--allow-unsandboxed)'}; "
-          f"each process may use {memory} MiB (container: {memory_limit_mb() or 'no'} limit)")
+          f"each process may use {memory} MiB (container: {container or 'no'} limit)")
     return 0
 
 
